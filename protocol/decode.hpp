@@ -1,0 +1,36 @@
+#pragma once
+// From a verified Message (verify.hpp) to plain values. Each decoder checks the payload
+// type, so a message out of place gets a reason instead of a null pointer.
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "protocol/arena_generated.h"
+#include "protocol/messages.hpp"
+#include "protocol/result.hpp"
+
+namespace arena::protocol {
+
+[[nodiscard]] result<hello_msg> decode_hello(const Message& message);
+[[nodiscard]] result<welcome_info> decode_welcome(const Message& message);
+[[nodiscard]] result<reject_msg> decode_reject(const Message& message);
+// Refuses a non-finite thrust or turn (NaN must never reach the world). Does not clamp:
+// the range [-1, 1] is the server's rule, applied where inputs enter the world.
+[[nodiscard]] result<input_msg> decode_input(const Message& message);
+[[nodiscard]] result<ping_msg> decode_ping(const Message& message);
+[[nodiscard]] result<pong_msg> decode_pong(const Message& message);
+[[nodiscard]] result<bye_msg> decode_bye(const Message& message);
+
+// A snapshot read in place: bodies points into the verified frame (no copy), so the view
+// is valid as long as the frame's storage is.
+struct snapshot_view {
+  std::uint32_t tick = 0;
+  std::uint32_t ack_sequence = 0;
+  std::span<const BodyState> bodies;
+};
+[[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
+
+// "Hello", "Input", ... for logs; "unknown" outside the schema.
+[[nodiscard]] std::string_view payload_name(Payload type) noexcept;
+
+}  // namespace arena::protocol

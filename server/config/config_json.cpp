@@ -1,0 +1,293 @@
+#include "server/config/config_json.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "server/world/presets.hpp"
+
+namespace arena::config {
+
+using nlohmann::json;
+using world::real;
+using world::vec2;
+
+namespace {
+
+struct bad_field {
+    std::string message;
+};
+
+// Reads the fields of one JSON object, and refuses any field it was not asked for.
+class object_reader {
+public:
+    object_reader(const json& j, std::string path) : j_(j), path_(std::move(path)) {
+        if (!j_.is_object()) throw bad_field{where() + " must be an object"};
+    }
+
+    void read(const char* name, real& out) {
+        if (const json* v = take(name)) {
+            if (!v->is_number()) throw bad_field{where(name) + " must be a number"};
+            const double d = v->get<double>();
+            if (!std::isfinite(d) || std::fabs(d) > std::numeric_limits<real>::max())
+                throw bad_field{where(name) + " must be a finite number"};
+            out = static_cast<real>(d);
+        }
+    }
+    void read(const char* name, uint32_t& out) {
+        if (const json* v = take(name)) {
+            if (!v->is_number_unsigned() || v->get<uint64_t>() > std::numeric_limits<uint32_t>::max())
+                throw bad_field{where(name) + " must be an integer in [0, 4294967295]"};
+            out = v->get<uint32_t>();
+        }
+    }
+    void read(const char* name, bool& out) {
+        if (const json* v = take(name)) {
+            if (!v->is_boolean()) throw bad_field{where(name) + " must be true or false"};
+            out = v->get<bool>();
+        }
+    }
+    void read(const char* name, vec2& out) {
+        if (const json* v = take(name)) {
+            if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number())
+                throw bad_field{where(name) + " must be an array of two numbers [x, y]"};
+            json pair = {{"x", (*v)[0]}, {"y", (*v)[1]}};
+            object_reader r(pair, where(name));
+            r.read("x", out.x());
+            r.read("y", out.y());
+        }
+    }
+    template <class Enum, size_t N>
+    void read_enum(const char* name, Enum& out, const std::pair<const char*, Enum> (&names)[N]) {
+        if (const json* v = take(name)) {
+            std::string options;
+            for (const auto& [text, value] : names) {
+                if (v->is_string() && v->get<std::string>() == text) {
+                    out = value;
+                    return;
+                }
+                if (!options.empty()) options.append(", ");
+                options.append(text);
+            }
+            throw bad_field{where(name) + " must be one of: " + options};
+        }
+    }
+    // The sub-object or array `name`, if present.
+    const json* take(const char* name) {
+        seen_.insert(name);
+        auto it = j_.find(name);
+        return it == j_.end() ? nullptr : &*it;
+    }
+    std::string where(const char* name = nullptr) const {
+        std::string p = path_;
+        if (name) {
+            if (!p.empty()) p.append(".");
+            p.append(name);
+        }
+        if (p.empty()) p = "(top level)";
+        std::string out = "field '";
+        out.append(p).append("'");
+        return out;
+    }
+    std::string child(const char* name) const { return path_.empty() ? name : path_ + "." + name; }
+    // Any field not asked for is a typo or a field from another version: refuse it.
+    void finish() const {
+        for (const auto& [key, value] : j_.items())
+            if (!seen_.count(key)) throw bad_field{"unknown " + where(key.c_str())};
+    }
+
+private:
+    const json& j_;
+    std::string path_;
+    std::set<std::string> seen_;
+};
+
+constexpr std::pair<const char*, world::integrator> integrator_names[] = {
+    {"semi-implicit", world::integrator::semi_implicit}, {"explicit", world::integrator::explicit_euler}};
+constexpr std::pair<const char*, world::boundary> boundary_names[] = {{"open", world::boundary::open},
+                                                                      {"wrap", world::boundary::wrap},
+                                                                      {"walls", world::boundary::walls},
+                                                                      {"floor", world::boundary::floor}};
+
+void read_material(const json& j, const std::string& path, world::body_material& m) {
+    object_reader r(j, path);
+    r.read("density", m.density);
+    r.read("mass", m.mass);
+    r.read("radius", m.radius);
+    r.read("restitution", m.restitution);
+    r.read("drag_area", m.drag_area);
+    r.read("fixed_rotation", m.fixed_rotation);
+    r.finish();
+}
+
+void read_control(const json& j, const std::string& path, world::control_config& c) {
+    object_reader r(j, path);
+    r.read("thrust_force", c.thrust_force);
+    r.read("turn_torque", c.turn_torque);
+    r.read("impulse", c.impulse);
+    r.read("impulse_cooldown_ticks", c.impulse_cooldown_ticks);
+    r.read("thrust_along_facing", c.thrust_along_facing);
+    r.read("impulse_upward", c.impulse_upward);
+    r.read("impulse_needs_ground", c.impulse_needs_ground);
+    r.finish();
+}
+
+void read_rocks(const json& j, const std::string& path, world::rock_config& rocks) {
+    object_reader r(j, path);
+    r.read("count", rocks.count);
+    r.read("min_radius", rocks.min_radius);
+    r.read("max_radius", rocks.max_radius);
+    r.read("max_speed", rocks.max_speed);
+    if (const json* m = r.take("material")) read_material(*m, r.child("material"), rocks.material);
+    r.finish();
+}
+
+void read_fluids(const json& j, const std::string& path, std::vector<world::fluid_region>& fluids) {
+    if (!j.is_array()) throw bad_field{"field '" + path + "' must be an array"};
+    fluids.clear();
+    for (size_t i = 0; i < j.size(); ++i) {
+        world::fluid_region f;
+        object_reader r(j[i], path + "[" + std::to_string(i) + "]");
+        r.read("min", f.min);
+        r.read("max", f.max);
+        r.read("density", f.density);
+        r.finish();
+        fluids.push_back(f);
+    }
+}
+
+// Values that parse but would break the physics (a zero Δt, a negative radius).
+void check_ranges(const world::world_config& c) {
+    auto require = [](bool ok, const char* what) {
+        if (!ok) throw bad_field{what};
+    };
+    require(c.dt > 0 && c.dt <= 1, "field 'dt' must be in (0, 1] seconds");
+    require(c.size.x() > 0 && c.size.y() > 0, "field 'size' must be positive");
+    require(c.player.radius > 0, "field 'player.radius' must be positive");
+    require(c.rocks.min_radius > 0 && c.rocks.min_radius <= c.rocks.max_radius,
+            "fields 'rocks.min_radius' and 'rocks.max_radius' must satisfy 0 < min <= max");
+    require(c.penetration_slop >= 0 && c.speculative_distance >= 0, "fields 'penetration_slop' and 'speculative_distance' must not be negative");
+    require(c.air_density >= 0, "field 'air_density' must not be negative");
+    require(c.floor_friction >= 0, "field 'floor_friction' must not be negative");
+    require(c.velocity_iterations <= 100 && c.position_iterations <= 100, "solver iterations must be at most 100");
+}
+
+world::world_config read_world(const json& j) {
+    object_reader r(j, "");
+    world::world_config c;
+    if (const json* preset = r.take("preset")) {
+        if (!preset->is_string()) throw bad_field{"field 'preset' must be a string"};
+        auto p = world::preset_by_name(preset->get<std::string>());
+        if (!p) throw bad_field{"field 'preset': unknown preset '" + preset->get<std::string>() + "'"};
+        c = *p;
+    }
+    r.read("dt", c.dt);
+    r.read_enum("integrator", c.integrator, integrator_names);
+    r.read("gravity", c.gravity);
+    r.read("air_density", c.air_density);
+    if (const json* f = r.take("fluids")) read_fluids(*f, "fluids", c.fluids);
+    r.read_enum("boundary", c.boundary, boundary_names);
+    r.read("size", c.size);
+    r.read("floor_friction", c.floor_friction);
+    r.read("angular_damping", c.angular_damping);
+    r.read("velocity_iterations", c.velocity_iterations);
+    r.read("position_iterations", c.position_iterations);
+    r.read("restitution_threshold", c.restitution_threshold);
+    r.read("penetration_slop", c.penetration_slop);
+    r.read("speculative_distance", c.speculative_distance);
+    r.read("correction_fraction", c.correction_fraction);
+    r.read("max_correction", c.max_correction);
+    r.read("max_bodies", c.max_bodies);
+    if (const json* m = r.take("player")) read_material(*m, "player", c.player);
+    if (const json* m = r.take("control")) read_control(*m, "control", c.control);
+    if (const json* m = r.take("rocks")) read_rocks(*m, "rocks", c.rocks);
+    r.finish();
+    check_ranges(c);
+    return c;
+}
+
+template <class Enum, size_t N>
+const char* enum_name(Enum value, const std::pair<const char*, Enum> (&names)[N]) {
+    for (const auto& [text, v] : names)
+        if (v == value) return text;
+    return "?";
+}
+
+json vec_json(const vec2& v) { return json::array({v.x(), v.y()}); }
+
+json material_json(const world::body_material& m) {
+    return {{"density", m.density}, {"mass", m.mass},           {"radius", m.radius},
+            {"restitution", m.restitution}, {"drag_area", m.drag_area}, {"fixed_rotation", m.fixed_rotation}};
+}
+
+}  // namespace
+
+std::variant<world::world_config, config_error> parse_config_json(std::string_view text) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        return config_error{std::string("invalid JSON: ") + e.what()};
+    }
+    try {
+        return read_world(j);
+    } catch (const bad_field& e) {
+        return config_error{e.message};
+    }
+}
+
+std::variant<world::world_config, config_error> load_config_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return config_error{path + ": cannot open"};
+    std::ostringstream text;
+    text << in.rdbuf();
+    auto result = parse_config_json(text.str());
+    if (auto* e = std::get_if<config_error>(&result)) e->message = path + ": " + e->message;
+    return result;
+}
+
+std::string config_to_json(const world::world_config& c) {
+    json fluids = json::array();
+    for (const auto& f : c.fluids) fluids.push_back({{"min", vec_json(f.min)}, {"max", vec_json(f.max)}, {"density", f.density}});
+    const auto& k = c.control;
+    json j = {
+        {"dt", c.dt},
+        {"integrator", enum_name(c.integrator, integrator_names)},
+        {"gravity", vec_json(c.gravity)},
+        {"air_density", c.air_density},
+        {"fluids", fluids},
+        {"boundary", enum_name(c.boundary, boundary_names)},
+        {"size", vec_json(c.size)},
+        {"floor_friction", c.floor_friction},
+        {"angular_damping", c.angular_damping},
+        {"velocity_iterations", c.velocity_iterations},
+        {"position_iterations", c.position_iterations},
+        {"restitution_threshold", c.restitution_threshold},
+        {"penetration_slop", c.penetration_slop},
+        {"speculative_distance", c.speculative_distance},
+        {"correction_fraction", c.correction_fraction},
+        {"max_correction", c.max_correction},
+        {"max_bodies", c.max_bodies},
+        {"player", material_json(c.player)},
+        {"control",
+         {{"thrust_force", k.thrust_force},
+          {"turn_torque", k.turn_torque},
+          {"impulse", k.impulse},
+          {"impulse_cooldown_ticks", k.impulse_cooldown_ticks},
+          {"thrust_along_facing", k.thrust_along_facing},
+          {"impulse_upward", k.impulse_upward},
+          {"impulse_needs_ground", k.impulse_needs_ground}}},
+        {"rocks",
+         {{"count", c.rocks.count},
+          {"min_radius", c.rocks.min_radius},
+          {"max_radius", c.rocks.max_radius},
+          {"max_speed", c.rocks.max_speed},
+          {"material", material_json(c.rocks.material)}}},
+    };
+    return j.dump(2);
+}
+
+}  // namespace arena::config

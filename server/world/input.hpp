@@ -1,0 +1,35 @@
+#pragma once
+// A player's input for one tick, and its check at the boundary of the world: non-finite values
+// are refused (NaN must never enter the state), out-of-range values are clamped.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "server/world/types.hpp"
+
+namespace arena::world {
+
+struct player_input {
+    real thrust = 0.0f;   // [−1, 1], share of control.thrust_force
+    real turn = 0.0f;     // [−1, 1], share of control.turn_torque (positive: counter-clockwise)
+    uint8_t buttons = 0;  // bit 0: impulse (boost or jump)
+};
+
+inline constexpr uint8_t button_impulse = 1u << 0;
+
+// The reason `input` cannot enter the world, or nothing when it can.
+std::optional<std::string> check_input(const player_input& input);
+
+// `input` with thrust and turn clamped to [−1, 1]. Call after check_input.
+player_input clamp_input(const player_input& input);
+
+// One tick's inputs: at most one per body. The world applies them in body id order,
+// whatever order they are listed in.
+struct body_input {
+    uint32_t body_id = 0;
+    player_input input{};
+};
+using tick_inputs = std::vector<body_input>;
+
+}  // namespace arena::world

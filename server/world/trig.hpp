@@ -1,0 +1,21 @@
+#pragma once
+// Sine and cosine from + − × ÷ only, so that every compiler and libm gives the same bits
+// (glibc's sinf and GCC's constant folding disagree with clang's; DETERMINISM.md rule 2).
+#include "server/world/types.hpp"
+
+namespace arena::world {
+
+inline constexpr real pi = 3.14159265358979323846f;
+
+struct cos_sin {
+    real c;
+    real s;
+};
+
+// Cosine and sine of `angle` (radians, any finite value). Max error about 1e-7 over [−π, π].
+cos_sin compute_cos_sin(real angle);
+
+// `angle` wrapped into (−π, π].
+real wrap_angle(real angle);
+
+}  // namespace arena::world

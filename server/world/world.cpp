@@ -1,0 +1,210 @@
+#include "server/world/world.hpp"
+
+#include <algorithm>
+
+#include "server/world/forces.hpp"
+#include "server/world/hash.hpp"
+#include "server/world/integrate.hpp"
+
+namespace arena::world {
+
+namespace {
+
+// How close to the floor a body's surface must be to stand on it, m.
+real ground_tolerance(const world_config& config) { return config.penetration_slop; }
+
+bool less_by_id(const body& b, uint32_t id) { return b.id < id; }
+
+}  // namespace
+
+world::world(const world_config& config, uint64_t seed) : config_(config), rng_(seed) { spawn_rocks(); }
+
+void world::step(const tick_inputs& inputs) {
+    apply_inputs(inputs);
+    accumulate_forces();
+    const real dt = config_.dt;
+    if (config_.integrator == integrator::explicit_euler) {
+        for (body& b : bodies_) integrate_position(b, dt);  // with the velocity before this step
+    }
+    for (body& b : bodies_) integrate_velocity(b, dt);
+    detect_collisions();
+    impulses_.load(bodies_, contacts_);
+    solve_contact_velocities(bodies_, contacts_, config_);
+    impulses_.store(bodies_, contacts_);
+    if (config_.integrator == integrator::semi_implicit) {
+        for (body& b : bodies_) integrate_position(b, dt);  // with the velocity after this step
+    }
+    correct_penetration(bodies_, contacts_, config_);
+    wrap_positions(bodies_, config_);
+    clear_accumulators();
+    ++tick_;
+}
+
+void world::apply_inputs(const tick_inputs& inputs) {
+    // In body id order, whatever order the caller listed them in.
+    std::vector<const body_input*> ordered;
+    ordered.reserve(inputs.size());
+    for (const body_input& in : inputs) ordered.push_back(&in);
+    std::stable_sort(ordered.begin(), ordered.end(),
+                     [](const body_input* l, const body_input* r) { return l->body_id < r->body_id; });
+    for (const body_input* in : ordered) {
+        body* b = find(in->body_id);
+        if (!b || check_input(in->input)) continue;
+        apply_player_input(*b, clamp_input(in->input), config_.control, on_ground(*b));
+    }
+}
+
+void world::accumulate_forces() {
+    for (body& b : bodies_) {
+        apply_weight(b, config_.gravity);
+        if (on_ground(b)) apply_floor_contact(b, config_.gravity, config_.floor_friction);
+        apply_drag(b, medium_density(config_, b.position));
+        apply_angular_damping(b, config_.angular_damping);
+    }
+}
+
+void world::detect_collisions() { detect_contacts(bodies_, config_, scratch_, contacts_); }
+
+void world::clear_accumulators() {
+    for (body& b : bodies_) {
+        b.force = {0, 0};
+        b.torque = 0;
+        b.resistance = {0, 0};
+        b.resistance_torque = 0;
+        if (b.impulse_cooldown > 0) --b.impulse_cooldown;
+    }
+}
+
+bool world::on_ground(const body& b) const {
+    if (config_.boundary != boundary::walls && config_.boundary != boundary::floor) return false;
+    return b.position.y() - b.radius <= ground_tolerance(config_);
+}
+
+std::optional<uint32_t> world::add_body(body b) {
+    if (bodies_.size() >= config_.max_bodies) return std::nullopt;
+    if (b.id == 0) {
+        b.id = next_id_;
+    } else if (find(b.id)) {
+        return std::nullopt;
+    }
+    next_id_ = std::max(next_id_, b.id + 1);
+    auto at = std::lower_bound(bodies_.begin(), bodies_.end(), b.id, less_by_id);
+    bodies_.insert(at, b);
+    return b.id;
+}
+
+std::optional<uint32_t> world::spawn_player(uint32_t owner) {
+    if (bodies_.size() >= config_.max_bodies) return std::nullopt;
+    auto is_free = [this](const vec2& p, real radius) {
+        for (const body& other : bodies_) {
+            const real reach = other.radius + radius;
+            if (displacement(p, other.position, config_).squaredNorm() < reach * reach) return false;
+        }
+        return true;
+    };
+    body b = make_body(config_.player, random_free_position(config_.player.radius, is_free));
+    b.owner = owner;
+    return add_body(b);
+}
+
+bool world::remove_body(uint32_t id) {
+    auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id, less_by_id);
+    if (at == bodies_.end() || at->id != id) return false;
+    bodies_.erase(at);
+    return true;
+}
+
+body* world::find(uint32_t id) {
+    auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id, less_by_id);
+    return at != bodies_.end() && at->id == id ? &*at : nullptr;
+}
+
+const body* world::find(uint32_t id) const { return const_cast<world*>(this)->find(id); }
+
+void world::spawn_rocks() {
+    const rock_config& rocks = config_.rocks;
+    if (rocks.count == 0) return;
+    // A grid of cells two largest radii wide, so that each spawn tests only its neighbours.
+    const real cell = 2 * rocks.max_radius;
+    const int nx = std::max(1, static_cast<int>(std::min<real>(config_.size.x() / cell, 4096)));
+    const int ny = std::max(1, static_cast<int>(std::min<real>(config_.size.y() / cell, 4096)));
+    std::vector<std::vector<uint32_t>> cells(static_cast<size_t>(nx) * static_cast<size_t>(ny));
+    auto cell_of = [&](const vec2& p, int& cx, int& cy) {
+        cx = std::clamp(static_cast<int>(p.x() / config_.size.x() * static_cast<real>(nx)), 0, nx - 1);
+        cy = std::clamp(static_cast<int>(p.y() / config_.size.y() * static_cast<real>(ny)), 0, ny - 1);
+    };
+    std::vector<body> placed;
+    auto is_free = [&](const vec2& p, real radius) {
+        int cx, cy;
+        cell_of(p, cx, cy);
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int x = (cx + dx + nx) % nx;
+                const int y = (cy + dy + ny) % ny;
+                for (uint32_t k : cells[static_cast<size_t>(y) * nx + x]) {
+                    const real reach = placed[k].radius + radius;
+                    if (displacement(p, placed[k].position, config_).squaredNorm() < reach * reach) return false;
+                }
+            }
+        }
+        return true;
+    };
+    for (uint32_t i = 0; i < rocks.count && bodies_.size() < config_.max_bodies; ++i) {
+        body_material material = rocks.material;
+        material.radius = rng_.uniform(rocks.min_radius, rocks.max_radius);
+        body b = make_body(material, random_free_position(material.radius, is_free));
+        // One draw per statement: argument evaluation order differs between compilers.
+        const real vx = rng_.uniform(-rocks.max_speed, rocks.max_speed);
+        const real vy = rng_.uniform(-rocks.max_speed, rocks.max_speed);
+        b.velocity = {vx, vy};
+        int cx, cy;
+        cell_of(b.position, cx, cy);
+        cells[static_cast<size_t>(cy) * nx + cx].push_back(static_cast<uint32_t>(placed.size()));
+        placed.push_back(b);
+    }
+    // Rocks are created first and in order, so appending keeps bodies_ sorted by id.
+    for (body& b : placed) {
+        b.id = next_id_++;
+        bodies_.push_back(b);
+    }
+}
+
+template <class IsFree>
+vec2 world::random_free_position(real radius, IsFree is_free) {
+    const vec2 lo{radius, radius};
+    const vec2 hi = (config_.size - lo).cwiseMax(lo);
+    vec2 p{0, 0};
+    for (int attempt = 0; attempt < 32; ++attempt) {
+        const real x = rng_.uniform(lo.x(), hi.x());
+        const real y = rng_.uniform(lo.y(), hi.y());
+        p = {x, y};
+        if (is_free(p, radius)) break;
+    }
+    return p;
+}
+
+uint64_t world::hash() const {
+    fnv1a h;
+    h.add_u32(tick_);
+    h.add_u64(rng_.state());
+    h.add_u32(static_cast<uint32_t>(bodies_.size()));
+    for (const body& b : bodies_) {
+        h.add_u32(b.id);
+        h.add_u32(b.owner);
+        h.add_real(b.mass);
+        h.add_real(b.inv_mass);
+        h.add_real(b.inertia);
+        h.add_real(b.inv_inertia);
+        h.add_real(b.radius);
+        h.add_real(b.restitution);
+        h.add_real(b.drag_area);
+        h.add_vec2(b.position);
+        h.add_vec2(b.velocity);
+        h.add_real(b.angle);
+        h.add_real(b.angular_velocity);
+        h.add_u32(b.impulse_cooldown);
+    }
+    return h.value();
+}
+
+}  // namespace arena::world

@@ -1,0 +1,73 @@
+#pragma once
+// The deterministic world: a pure function of (config, seed, inputs per tick). No clocks,
+// threads or I/O in here; Δt is the config's constant and time advances only through step().
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "server/world/body.hpp"
+#include "server/world/config.hpp"
+#include "server/world/contacts.hpp"
+#include "server/world/input.hpp"
+#include "server/world/rng.hpp"
+
+namespace arena::world {
+
+// Version of the world's physics: bump when a change alters results on purpose, so that
+// recordings and clients from another version are recognised.
+inline constexpr uint32_t world_version = 1;
+
+class world {
+public:
+    // A world with the config's rocks spawned from `seed`.
+    world(const world_config& config, uint64_t seed);
+
+    // Adds a body; its id is assigned when b.id == 0, else b.id is used (it must be unused).
+    // Returns the id, or nothing when the world is full or the id is taken.
+    std::optional<uint32_t> add_body(body b);
+    // A player's body of the config's player material at a free spot drawn from the world's rng.
+    std::optional<uint32_t> spawn_player(uint32_t owner);
+    bool remove_body(uint32_t id);
+
+    body* find(uint32_t id);
+    const body* find(uint32_t id) const;
+    std::span<const body> bodies() const { return bodies_; }
+    std::span<body> bodies() { return bodies_; }
+
+    // Advances one fixed Δt. Inputs must have passed check_input (they are clamped here);
+    // inputs for unknown bodies are ignored.
+    void step(const tick_inputs& inputs);
+
+    // 64-bit FNV-1a of the tick, the rng and every body's fields, in id order.
+    uint64_t hash() const;
+
+    uint32_t tick() const { return tick_; }
+    const world_config& config() const { return config_; }
+    // Contacts found in the last step (for tests and tools).
+    std::span<const contact> last_contacts() const { return contacts_; }
+    // True when `b` rests on or touches the floor.
+    bool on_ground(const body& b) const;
+
+private:
+    void apply_inputs(const tick_inputs& inputs);
+    void accumulate_forces();
+    void detect_collisions();
+    void clear_accumulators();
+    void spawn_rocks();
+    // A spot in [r, size − r]² that overlaps nobody `is_free` knows of (a few tries; a crowded
+    // world takes the last try).
+    template <class IsFree>
+    vec2 random_free_position(real radius, IsFree is_free);
+
+    world_config config_;
+    rng rng_;
+    std::vector<body> bodies_;  // sorted by id
+    uint32_t next_id_ = 1;
+    uint32_t tick_ = 0;
+    std::vector<contact> contacts_;
+    broadphase_scratch scratch_;
+    impulse_cache impulses_;
+};
+
+}  // namespace arena::world
