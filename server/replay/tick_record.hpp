@@ -1,0 +1,24 @@
+#pragma once
+// Everything that changes a world in one tick besides time itself: who joined, who left, and
+// the input each player's body consumed. The server applies ticks through apply_tick, and a
+// replay applies the recorded ticks through the same function, so the two cannot drift apart.
+#include <cstdint>
+#include <vector>
+
+#include "server/world/input.hpp"
+#include "server/world/world.hpp"
+
+namespace arena::replay {
+
+struct tick_record {
+    uint32_t tick = 0;                // the world's tick before this step
+    std::vector<uint32_t> joins;      // owner (player) ids, spawned in this order
+    std::vector<uint32_t> leaves;     // body ids removed, in this order
+    world::tick_inputs inputs;        // one per player body that consumed an input
+};
+
+// Joins (world::spawn_player), then leaves (world::remove_body), then one step with the inputs.
+// Returns the body id spawned for each join, in order (0 when the world was full).
+std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record);
+
+}  // namespace arena::replay
