@@ -1,0 +1,101 @@
+#pragma once
+// The match: the world, its players and their input buffers, one tick at a time, and the
+// snapshot fan-out. It knows clients only as participants and never reads a clock: the
+// server's tick loop calls tick() at the fixed rate.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "protocol/messages.hpp"
+#include "protocol/snapshot.hpp"
+#include "server/net/input_buffer.hpp"
+#include "server/net/participant.hpp"
+#include "server/replay/tick_record.hpp"
+#include "server/world/world.hpp"
+
+namespace arena::net {
+
+struct game_config {
+    uint16_t tick_rate = 60;          // ticks per second
+    uint16_t snapshot_rate = 20;      // snapshots per second (a divisor of tick_rate works best)
+    uint32_t max_players = 64;
+    uint32_t input_buffer = 8;        // inputs waiting per player; more drop the oldest
+    uint32_t max_inputs_per_second = 0;  // 0: 2 × tick_rate + 10
+    uint32_t max_name_bytes = 64;
+    uint32_t max_token_bytes = 1024;
+    std::string preset;               // name sent in Welcome ("" for a config file)
+    uint64_t seed = 1;
+};
+
+struct rejection {
+    protocol::RejectCode code;
+    std::string reason;
+};
+
+struct game_counters {
+    uint64_t joins = 0;
+    uint64_t leaves = 0;
+    uint64_t snapshots_sent = 0;
+    uint64_t input_underruns = 0;
+    uint64_t input_overflows = 0;
+    uint64_t inputs_received = 0;
+    uint64_t stale_inputs = 0;  // sequence not above the last received: ignored
+    uint32_t players_peak = 0;
+};
+
+class game {
+public:
+    game(const game_config& config, const world::world_config& world_config);
+
+    // A Hello: the player id, or why not. The body spawns and Welcome is sent at the next tick.
+    std::variant<uint32_t, rejection> join(participant& who, const protocol::hello_msg& hello);
+    // The player leaves (Bye, closed socket, dropped): its body goes at the next tick.
+    void leave(uint32_t player_id, std::string_view reason);
+    // An Input from a joined player: buffered for the world, or why it ends the connection.
+    std::optional<rejection> receive_input(uint32_t player_id, const protocol::input_msg& input);
+
+    // One world step: joins, leaves, one input per player, the step, then the snapshot if due.
+    void tick();
+
+    // Called after every step with what the tick changed and the world's hash (recording).
+    std::function<void(const replay::tick_record&, uint64_t)> on_tick;
+
+    const world::world& state() const { return world_; }
+    const game_config& config() const { return config_; }
+    const std::string& world_config_json() const { return world_config_json_; }
+    // Totals so far, live players' input buffers included.
+    game_counters counters() const;
+    size_t player_count() const { return players_.size(); }
+
+private:
+    struct player {
+        participant* who = nullptr;
+        std::string name;
+        uint32_t body_id = 0;  // 0 until spawned
+        input_buffer inputs;
+        uint32_t last_received_sequence = 0;
+        uint32_t inputs_this_window = 0;
+    };
+
+    void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
+    void broadcast_snapshot();
+    uint32_t input_limit() const;
+
+    game_config config_;
+    world::world world_;
+    std::string world_config_json_;
+    uint64_t world_config_hash_;
+    std::map<uint32_t, player> players_;   // by player id: a deterministic order
+    std::vector<uint32_t> pending_joins_;  // player ids whose body spawns next tick
+    std::vector<uint32_t> pending_leaves_; // body ids to remove next tick
+    uint32_t next_player_id_ = 1;
+    protocol::snapshot_encoder snapshot_;
+    std::vector<protocol::BodyState> body_states_;
+    game_counters counters_;  // departed players' buffers folded in on leave
+};
+
+}  // namespace arena::net

@@ -1,0 +1,21 @@
+#include "server/net/log.hpp"
+
+#include <chrono>
+
+namespace arena::net {
+
+namespace {
+const auto process_start = std::chrono::steady_clock::now();
+}
+
+void log_line(const char* format, ...) {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - process_start).count();
+    char line[1024];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(line, sizeof line, format, args);
+    va_end(args);
+    std::fprintf(stderr, "[%9.3f] %s\n", t, line);
+}
+
+}  // namespace arena::net

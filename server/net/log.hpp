@@ -1,0 +1,14 @@
+#pragma once
+// One line per event on stderr, prefixed with seconds since the process started, so that
+// operators and tests can read joins, leaves, rejects and the periodic figures.
+#include <cstdarg>
+#include <cstdio>
+
+namespace arena::net {
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+void log_line(const char* format, ...);
+
+}  // namespace arena::net

@@ -1,0 +1,228 @@
+#include "server/net/server.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "server/net/log.hpp"
+#include "server/net/session.hpp"
+
+namespace arena::net {
+
+using asio::use_awaitable;
+using asio::ip::tcp;
+
+namespace {
+
+int64_t steady_now_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+double ms(int64_t ns) { return static_cast<double>(ns) / 1e6; }
+
+}  // namespace
+
+server::server(asio::io_context& io, const server_options& options, const world::world_config& world_config)
+    : io_(io),
+      options_(options),
+      game_(options.game, world_config),
+      acceptor_(io),
+      clock_(1'000'000'000LL / options.game.tick_rate, options.max_catch_up),
+      tick_timer_(io),
+      stop_timer_(io) {
+    if (options_.max_connections == 0) options_.max_connections = 2 * options_.game.max_players + 16;
+}
+
+int64_t server::now_ns() const { return steady_now_ns(); }
+
+void server::start() {
+    const tcp::endpoint endpoint(asio::ip::make_address(options_.bind), options_.port);
+    acceptor_.open(endpoint.protocol());
+    acceptor_.set_option(tcp::acceptor::reuse_address(true));
+    acceptor_.bind(endpoint);
+    acceptor_.listen(asio::socket_base::max_listen_connections);
+    port_ = acceptor_.local_endpoint().port();
+    std::printf("listening on %s:%u\n", options_.bind.c_str(), port_);
+    std::fflush(stdout);
+    log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.game.tick_rate,
+             options_.game.snapshot_rate, options_.game.max_players, game_.state().bodies().size());
+    started_ns_ = window_start_ns_ = last_watchdog_ns_ = now_ns();
+    asio::co_spawn(io_, accept_loop(), asio::detached);
+    asio::co_spawn(io_, tick_loop(), asio::detached);
+    if (options_.duration_s > 0) {
+        stop_timer_.expires_after(std::chrono::nanoseconds(static_cast<int64_t>(options_.duration_s * 1e9)));
+        stop_timer_.async_wait([this](const asio::error_code& ec) {
+            if (!ec) shutdown("match over (--duration reached)");
+        });
+    }
+}
+
+asio::awaitable<void> server::accept_loop() {
+    while (!stopping_) {
+        asio::error_code ec;
+        tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(use_awaitable, ec));
+        if (ec) {
+            if (stopping_ || ec == asio::error::operation_aborted) co_return;
+            log_line("accept failed: %s", ec.message().c_str());
+            continue;
+        }
+        auto s = std::make_shared<session>(std::move(socket), *this, next_session_id_++);
+        sessions_.emplace(s->id(), s);
+        s->start();
+        if (sessions_.size() > options_.max_connections) s->reject(protocol::RejectCode::server_full, "too many connections");
+    }
+}
+
+asio::awaitable<void> server::tick_loop() {
+    clock_.start(now_ns());
+    while (!stopping_) {
+        const int64_t due = clock_.next_due_ns();
+        tick_timer_.expires_at(asio::steady_timer::time_point(std::chrono::nanoseconds(due)));
+        asio::error_code ec;
+        co_await tick_timer_.async_wait(asio::redirect_error(use_awaitable, ec));
+        if (stopping_) break;
+        run_due_ticks();
+    }
+}
+
+void server::run_due_ticks() {
+    const uint32_t due = clock_.advance(now_ns());
+    for (uint32_t i = 0; i < due; ++i) {
+        const int64_t begin = now_ns();
+        game_.tick();
+        const int64_t spent = now_ns() - begin;
+        run_ticks_.add(spent);
+        window_ticks_.add(spent);
+    }
+    const int64_t now = now_ns();
+    if (now - last_watchdog_ns_ >= 250'000'000) check_stalled_sessions(now);
+    if (static_cast<double>(now - window_start_ns_) >= options_.stats_interval_s * 1e9) log_stats(now);
+}
+
+void server::check_stalled_sessions(int64_t now) {
+    last_watchdog_ns_ = now;
+    std::vector<std::shared_ptr<session>> stalled;
+    for (auto& [id, s] : sessions_)
+        if (!s->closing() && s->stalled_ns(now) > options_.stall_timeout_ns) stalled.push_back(s);
+    for (auto& s : stalled) s->reject(protocol::RejectCode::slow_consumer, "no progress writing to the client");
+}
+
+void server::log_stats(int64_t now) {
+    const double seconds = static_cast<double>(now - window_start_ns_) / 1e9;
+    log_line("stats players=%zu ticks=%u tick_ms_p50=%.3f tick_ms_p99=%.3f tick_ms_max=%.3f overruns=%llu "
+             "bytes_in_per_s=%.0f bytes_out_per_s=%.0f connections=%zu",
+             game_.player_count(), game_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
+             ms(window_ticks_.quantile_ns(0.99)), ms(window_ticks_.max_ns()),
+             static_cast<unsigned long long>(clock_.overruns()), static_cast<double>(window_traffic_.bytes_in) / seconds,
+             static_cast<double>(window_traffic_.bytes_out) / seconds, sessions_.size());
+    window_ticks_.clear();
+    window_traffic_ = {};
+    window_start_ns_ = now;
+}
+
+std::variant<uint32_t, rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
+    if (stopping_) return rejection{protocol::RejectCode::shutting_down, "the server is shutting down"};
+    auto joined = game_.join(s, hello);
+    if (std::holds_alternative<uint32_t>(joined))
+        log_line("hello player=%u name=%s from %s", std::get<uint32_t>(joined), hello.name.c_str(), s.peer().c_str());
+    return joined;
+}
+
+std::optional<rejection> server::on_input(session& s, const protocol::input_msg& input) {
+    return game_.receive_input(s.player_id(), input);
+}
+
+void server::on_closed(session& s, std::string_view reason) {
+    if (s.player_id() != 0) game_.leave(s.player_id(), reason);
+    ++drops_[std::string(reason.substr(0, reason.find(':')))];
+}
+
+void server::on_gone(session& s) {
+    sessions_.erase(s.id());
+    if (stopping_ && sessions_.empty()) finish();
+}
+
+void server::count_in(size_t bytes) {
+    run_traffic_.bytes_in += bytes;
+    window_traffic_.bytes_in += bytes;
+}
+
+void server::count_out(size_t bytes) {
+    run_traffic_.bytes_out += bytes;
+    window_traffic_.bytes_out += bytes;
+    ++run_traffic_.messages_out;
+}
+
+void server::count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason) {
+    const char* name = protocol::EnumNameRejectCode(code);
+    ++rejects_[name];
+    log_line("reject %s code=%s reason=%.*s", peer.c_str(), name, static_cast<int>(reason.size()), reason.data());
+}
+
+void server::shutdown(const std::string& reason) {
+    if (stopping_) return;
+    stopping_ = true;
+    log_line("shutting down: %s", reason.c_str());
+    asio::error_code ec;
+    acceptor_.close(ec);
+    tick_timer_.cancel();
+    stop_timer_.cancel();
+    // Copy: saying bye may close a session and erase it from the map.
+    std::vector<std::shared_ptr<session>> all;
+    for (auto& [id, s] : sessions_) all.push_back(s);
+    for (auto& s : all) s->say_bye(reason);
+    if (sessions_.empty()) {
+        finish();
+        return;
+    }
+    // Sessions that cannot flush are closed by their own linger timers; this bounds the rest.
+    stop_timer_.expires_after(std::chrono::nanoseconds(options_.close_grace_ns + 100'000'000));
+    stop_timer_.async_wait([this](const asio::error_code&) { finish(); });
+}
+
+void server::finish() {
+    if (finished_) return;
+    finished_ = true;
+    stop_timer_.cancel();
+    if (on_shutdown) on_shutdown();
+    if (!options_.stats_json.empty()) write_stats_json(options_.stats_json);
+    log_stats(now_ns());
+    io_.stop();
+}
+
+void server::write_stats_json(const std::string& path) const {
+    const double seconds = static_cast<double>(now_ns() - started_ns_) / 1e9;
+    const game_counters c = game_.counters();
+    nlohmann::json j = {
+        {"duration_s", seconds},
+        {"ticks", game_.state().tick()},
+        {"tick_rate", options_.game.tick_rate},
+        {"snapshot_rate", options_.game.snapshot_rate},
+        {"tick_ms", {{"p50", ms(run_ticks_.quantile_ns(0.5))},
+                     {"p99", ms(run_ticks_.quantile_ns(0.99))},
+                     {"max", ms(run_ticks_.max_ns())},
+                     {"mean", run_ticks_.mean_ns() / 1e6}}},
+        {"overruns", clock_.overruns()},
+        {"players_peak", c.players_peak},
+        {"joins", c.joins},
+        {"leaves", c.leaves},
+        {"rejects", rejects_},
+        {"closes", drops_},
+        {"inputs_received", c.inputs_received},
+        {"input_underruns", c.input_underruns},
+        {"input_overflows", c.input_overflows},
+        {"stale_inputs", c.stale_inputs},
+        {"snapshots_sent", c.snapshots_sent},
+        {"bytes_in", run_traffic_.bytes_in},
+        {"bytes_out", run_traffic_.bytes_out},
+        {"messages_out", run_traffic_.messages_out},
+        {"bytes_in_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_in) / seconds : 0},
+        {"bytes_out_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_out) / seconds : 0},
+    };
+    std::ofstream out(path);
+    out << j.dump(2) << "\n";
+    if (!out) log_line("cannot write stats to %s", path.c_str());
+}
+
+}  // namespace arena::net

@@ -1,0 +1,104 @@
+#pragma once
+// The authoritative server: accepts TCP clients, runs the game at a fixed tick on one
+// io_context thread, fans snapshots out, and shuts down cleanly on a signal or at the end of
+// --duration.
+#include <asio.hpp>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "server/net/duration_histogram.hpp"
+#include "server/net/game.hpp"
+#include "server/net/tick_clock.hpp"
+
+namespace arena::net {
+
+class session;
+
+struct server_options {
+    std::string bind = "127.0.0.1";
+    uint16_t port = 7777;                 // 0: any free port
+    game_config game{};
+    double duration_s = 0;                // 0: run until a signal
+    std::string stats_json;               // written at exit when set
+    uint32_t max_connections = 0;         // 0: 2 × max_players + 16
+    int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
+    int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
+    uint32_t max_control_frames = 64;     // queued control messages per client
+    int64_t close_grace_ns = 1'000'000'000;        // a closing client may flush this long
+    uint32_t max_catch_up = 5;            // ticks run at once after a stall; more are overruns
+    double stats_interval_s = 5;          // period of the stats log line
+};
+
+// Figures for the whole run, and for the current stats window.
+struct traffic {
+    uint64_t bytes_in = 0;
+    uint64_t bytes_out = 0;
+    uint64_t messages_in = 0;
+    uint64_t messages_out = 0;
+};
+
+class server {
+public:
+    server(asio::io_context& io, const server_options& options, const world::world_config& world_config);
+
+    // Binds, listens, prints "listening on HOST:PORT", and starts accepting and ticking.
+    void start();
+    // Stops accepting, says Bye to every client, and stops the io_context once they are gone
+    // (or after the grace period). Idempotent.
+    void shutdown(const std::string& reason);
+    // Called once, after the last tick, before the io_context stops (recording, stats).
+    std::function<void()> on_shutdown;
+
+    // From sessions.
+    std::variant<uint32_t, rejection> on_hello(session& s, const protocol::hello_msg& hello);
+    std::optional<rejection> on_input(session& s, const protocol::input_msg& input);
+    // The session began to close: its player leaves the game now.
+    void on_closed(session& s, std::string_view reason);
+    // The session's socket is closed: it is forgotten.
+    void on_gone(session& s);
+    void count_in(size_t bytes);
+    void count_out(size_t bytes);
+    void count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason);
+    uint32_t current_tick() const { return game_.state().tick(); }
+    const server_options& options() const { return options_; }
+    int64_t now_ns() const;
+    bool shutting_down() const { return stopping_; }
+
+    game& match() { return game_; }
+    uint16_t port() const { return port_; }
+    void write_stats_json(const std::string& path) const;
+
+private:
+    asio::awaitable<void> accept_loop();
+    asio::awaitable<void> tick_loop();
+    void run_due_ticks();
+    void check_stalled_sessions(int64_t now);
+    void log_stats(int64_t now);
+    void finish();
+
+    asio::io_context& io_;
+    server_options options_;
+    game game_;
+    asio::ip::tcp::acceptor acceptor_;
+    uint16_t port_ = 0;
+    std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
+    uint64_t next_session_id_ = 1;
+    tick_clock clock_;
+    asio::steady_timer tick_timer_;
+    asio::steady_timer stop_timer_;
+    bool stopping_ = false;
+    bool finished_ = false;
+    int64_t started_ns_ = 0;
+    duration_histogram run_ticks_;
+    duration_histogram window_ticks_;
+    traffic run_traffic_, window_traffic_;
+    int64_t window_start_ns_ = 0;
+    int64_t last_watchdog_ns_ = 0;
+    std::map<std::string, uint64_t> rejects_;  // by reason code name
+    std::map<std::string, uint64_t> drops_;    // closes by reason, for the stats
+};
+
+}  // namespace arena::net

@@ -1,0 +1,244 @@
+#include "server/net/session.hpp"
+
+#include "protocol/decode.hpp"
+#include "protocol/verify.hpp"
+#include "server/net/log.hpp"
+#include "server/net/server.hpp"
+
+namespace arena::net {
+
+using asio::use_awaitable;
+using protocol::Payload;
+using protocol::RejectCode;
+
+namespace {
+
+std::string describe(const asio::ip::tcp::socket& socket) {
+    asio::error_code ec;
+    const auto endpoint = socket.remote_endpoint(ec);
+    if (ec) return "unknown-peer";
+    return endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+}
+
+}  // namespace
+
+session::session(asio::ip::tcp::socket socket, server& owner, uint64_t id)
+    : socket_(std::move(socket)),
+      owner_(owner),
+      id_(id),
+      peer_(describe(socket_)),
+      wake_(socket_.get_executor()),
+      handshake_(socket_.get_executor()),
+      linger_(socket_.get_executor()) {}
+
+void session::start() {
+    asio::error_code ec;
+    socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+    auto self = shared_from_this();
+    // Each coroutine's completion handler holds the session alive until the coroutine ends.
+    asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
+    asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
+    handshake_.expires_after(std::chrono::nanoseconds(owner_.options().handshake_timeout_ns));
+    handshake_.async_wait([self](const asio::error_code& e) {
+        if (!e && self->player_id_ == 0 && !self->closing_)
+            self->reject(RejectCode::timeout, "no Hello within the handshake timeout");
+    });
+}
+
+asio::awaitable<void> session::reader() {
+    try {
+        while (!closing_) {
+            const std::span<uint8_t> missing = reader_.next_buffer();
+            const size_t n = co_await socket_.async_read_some(asio::buffer(missing.data(), missing.size()), use_awaitable);
+            owner_.count_in(n);
+            reader_.commit(n);
+            if (reader_.failed()) {
+                const bool too_large = reader_.error().find("exceeds") != std::string_view::npos;
+                reject(too_large ? RejectCode::too_large : RejectCode::bad_request, reader_.error());
+                co_return;
+            }
+            if (!reader_.has_frame()) continue;
+            auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
+            if (!verified) {
+                reject(RejectCode::bad_request, "frame failed verification: " + verified.error);
+                co_return;
+            }
+            const bool go_on = dispatch(*verified.value);
+            reader_.next();
+            if (!go_on) co_return;
+        }
+    } catch (const std::system_error& e) {
+        if (!closing_) {
+            const bool eof = e.code() == asio::error::eof;
+            const bool mid_frame = reader_.buffered() > 0;
+            const std::string why = eof ? (mid_frame ? "connection closed mid-frame" : "connection closed")
+                                        : "socket error: " + e.code().message();
+            owner_.on_closed(*this, why);
+            close_now();
+        }
+    }
+}
+
+bool session::dispatch(const protocol::Message& message) {
+    switch (message.payload_type()) {
+        case Payload::Hello: {
+            if (player_id_ != 0) {
+                reject(RejectCode::bad_request, "a second Hello");
+                return false;
+            }
+            auto hello = protocol::decode_hello(message);
+            if (!hello) {
+                reject(RejectCode::bad_request, hello.error);
+                return false;
+            }
+            auto joined = owner_.on_hello(*this, hello.value);
+            if (auto* no = std::get_if<rejection>(&joined)) {
+                reject(no->code, no->reason);
+                return false;
+            }
+            player_id_ = std::get<uint32_t>(joined);
+            handshake_.cancel();
+            return true;
+        }
+        case Payload::Input: {
+            if (player_id_ == 0) {
+                reject(RejectCode::bad_request, "Input before Hello");
+                return false;
+            }
+            auto input = protocol::decode_input(message);
+            if (!input) {
+                reject(RejectCode::bad_input, input.error);
+                return false;
+            }
+            if (auto no = owner_.on_input(*this, input.value)) {
+                reject(no->code, no->reason);
+                return false;
+            }
+            return true;
+        }
+        case Payload::Ping: {
+            if (player_id_ == 0) {
+                reject(RejectCode::bad_request, "Ping before Hello");
+                return false;
+            }
+            auto ping = protocol::decode_ping(message);
+            if (!ping) {
+                reject(RejectCode::bad_request, ping.error);
+                return false;
+            }
+            send(protocol::encode_pong(ping.value.client_time, owner_.current_tick()));
+            return true;
+        }
+        case Payload::Bye: {
+            auto bye = protocol::decode_bye(message);
+            owner_.on_closed(*this, "client said bye: " + (bye ? bye.value.reason : std::string("(unreadable)")));
+            close_after({});
+            return false;
+        }
+        default:
+            reject(RejectCode::bad_request,
+                   "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
+            return false;
+    }
+}
+
+asio::awaitable<void> session::writer() {
+    try {
+        while (!closed_) {
+            if (!control_.empty()) {
+                protocol::frame_bytes frame = std::move(control_.front());
+                control_.pop_front();
+                if (!frame.empty()) {
+                    co_await asio::async_write(socket_, asio::buffer(frame), use_awaitable);
+                    owner_.count_out(frame.size());
+                }
+            } else if (snapshot_pending_) {
+                std::swap(snapshot_next_, snapshot_writing_);
+                snapshot_pending_ = false;
+                co_await asio::async_write(socket_, asio::buffer(snapshot_writing_), use_awaitable);
+                owner_.count_out(snapshot_writing_.size());
+            } else if (closing_) {
+                close_now();
+                co_return;
+            } else {
+                waiting_since_ns_ = 0;
+                wake_.expires_at(asio::steady_timer::time_point::max());
+                asio::error_code ec;
+                co_await wake_.async_wait(asio::redirect_error(use_awaitable, ec));
+                continue;
+            }
+            // A write completed: that is progress.
+            waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.now_ns();
+        }
+    } catch (const std::system_error& e) {
+        if (!closing_) owner_.on_closed(*this, "write failed: " + e.code().message());
+        close_now();
+    }
+}
+
+void session::send(protocol::frame_bytes frame) {
+    if (closing_) return;
+    if (control_.size() >= owner_.options().max_control_frames) {
+        reject(RejectCode::slow_consumer, "too many messages waiting to be sent");
+        return;
+    }
+    control_.push_back(std::move(frame));
+    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.now_ns();
+    wake_.cancel();
+}
+
+void session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
+    if (closing_) return;
+    snapshot.copy_with_ack(ack_sequence, snapshot_next_);
+    snapshot_pending_ = true;
+    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.now_ns();
+    wake_.cancel();
+}
+
+void session::reject(RejectCode code, std::string_view reason) {
+    if (closing_) return;
+    owner_.count_reject(code, peer_, reason);
+    owner_.on_closed(*this, std::string(protocol::EnumNameRejectCode(code)) + ": " + std::string(reason));
+    close_after(protocol::encode_reject(code, reason));
+}
+
+void session::say_bye(std::string_view reason) {
+    if (closing_) return;
+    owner_.on_closed(*this, reason);
+    close_after(protocol::encode_bye(reason));
+}
+
+void session::close_after(protocol::frame_bytes last_frame) {
+    if (closing_) return;
+    closing_ = true;
+    handshake_.cancel();
+    // Whatever was waiting is dropped: only the last word goes out, then the socket closes.
+    control_.clear();
+    snapshot_pending_ = false;
+    control_.push_back(std::move(last_frame));
+    wake_.cancel();
+    auto self = shared_from_this();
+    linger_.expires_after(std::chrono::nanoseconds(owner_.options().close_grace_ns));
+    linger_.async_wait([self](const asio::error_code& e) {
+        if (!e) self->close_now();
+    });
+}
+
+void session::close_now() {
+    if (closed_) return;
+    closed_ = true;
+    closing_ = true;
+    asio::error_code ec;
+    socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
+    socket_.close(ec);
+    wake_.cancel();
+    handshake_.cancel();
+    linger_.cancel();
+    owner_.on_gone(*this);
+}
+
+int64_t session::stalled_ns(int64_t now_ns) const {
+    return waiting_since_ns_ == 0 ? 0 : now_ns - waiting_since_ns_;
+}
+
+}  // namespace arena::net

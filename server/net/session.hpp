@@ -1,0 +1,63 @@
+#pragma once
+// One TCP client: a reader coroutine that frames, verifies and dispatches its messages, and a
+// writer coroutine, the only one that writes to the socket. Output is bounded: control
+// messages queue up to a limit, and a snapshot waiting to be sent is replaced by a newer one,
+// so a client that does not read costs at most one snapshot and a few small frames.
+#include <asio.hpp>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "protocol/framing.hpp"
+#include "server/net/participant.hpp"
+
+namespace arena::net {
+
+class server;
+
+class session : public participant, public std::enable_shared_from_this<session> {
+public:
+    session(asio::ip::tcp::socket socket, server& owner, uint64_t id);
+
+    void start();
+    void send(protocol::frame_bytes frame) override;
+    void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
+    void reject(protocol::RejectCode code, std::string_view reason) override;
+    // Sends Bye(reason) and closes (server shutdown, a client's own Bye).
+    void say_bye(std::string_view reason);
+
+    // Nanoseconds that output has waited without a byte written (0 when nothing waits).
+    int64_t stalled_ns(int64_t now_ns) const;
+    uint64_t id() const { return id_; }
+    uint32_t player_id() const { return player_id_; }
+    bool closing() const { return closing_; }
+    const std::string& peer() const { return peer_; }
+
+private:
+    asio::awaitable<void> reader();
+    asio::awaitable<void> writer();
+    // Handles one verified frame; false ends the connection.
+    bool dispatch(const protocol::Message& message);
+    void close_after(protocol::frame_bytes last_frame);
+    void close_now();
+
+    asio::ip::tcp::socket socket_;
+    server& owner_;
+    uint64_t id_;
+    std::string peer_;
+    uint32_t player_id_ = 0;  // 0 until the Hello is accepted
+    protocol::frame_reader reader_;
+    std::deque<protocol::frame_bytes> control_;  // in order, bounded
+    std::vector<uint8_t> snapshot_next_;         // newest snapshot not yet being written
+    std::vector<uint8_t> snapshot_writing_;
+    bool snapshot_pending_ = false;
+    bool closing_ = false;
+    bool closed_ = false;
+    int64_t waiting_since_ns_ = 0;  // when output began to wait unwritten; 0 = nothing waits
+    asio::steady_timer wake_;       // wakes the writer
+    asio::steady_timer handshake_;  // Hello deadline
+    asio::steady_timer linger_;     // bounds how long a closing session may flush
+};
+
+}  // namespace arena::net

@@ -1,0 +1,78 @@
+// arena-server: the authoritative game server. Wiring only: flags, the world config, the
+// server, signals.
+#include <asio.hpp>
+#include <cstdio>
+#include <variant>
+
+#include "server/cli_helpers.hpp"
+#include "server/config/config_json.hpp"
+#include "server/net/log.hpp"
+#include "server/net/server.hpp"
+#include "server/world/presets.hpp"
+
+using namespace arena;
+
+int main(int argc, char** argv) {
+    CLI::App app{"arena-server: the authoritative Arena game server", "arena-server"};
+    net::server_options options;
+    std::string preset = "asteroids", config_file, record;
+    double handshake_s = 5, stall_s = 5;
+    app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
+    app.add_option("--port", options.port, "TCP port (default 7777; 0 picks a free one)");
+    app.add_option("--tick-rate", options.game.tick_rate, "world steps per second (default 60)")->check(CLI::Range(1, 1000));
+    app.add_option("--snapshot-rate", options.game.snapshot_rate, "snapshots per second (default 20)")->check(CLI::Range(1, 1000));
+    app.add_option("--max-players", options.game.max_players, "players at once (default 64)")->check(CLI::Range(1, 100000));
+    app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
+    app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
+    app.add_option("--seed", options.game.seed, "world seed (default 1)");
+    app.add_option("--record", record, "record the session to FILE for arena-replay");
+    app.add_option("--duration", options.duration_s, "run this many seconds, then shut down cleanly (default: until a signal)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
+    app.add_option("--input-buffer", options.game.input_buffer, "inputs buffered per player (default 8)")->check(CLI::Range(1, 1024));
+    app.add_option("--max-inputs-per-second", options.game.max_inputs_per_second,
+                   "inputs per second before a client is dropped (default 2 x tick rate + 10)");
+    app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--stall-timeout", stall_s, "seconds a client may block our writes before it is dropped (default 5)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
+    app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
+        ->check(CLI::PositiveNumber);
+    if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    options.handshake_timeout_ns = static_cast<int64_t>(handshake_s * 1e9);
+    options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
+
+    world::world_config world_config;
+    if (!config_file.empty()) {
+        auto loaded = config::load_config_file(config_file);
+        if (auto* e = std::get_if<config::config_error>(&loaded)) {
+            std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
+            return 2;
+        }
+        world_config = std::get<world::world_config>(loaded);
+        options.game.preset = "";
+    } else if (auto p = world::preset_by_name(preset)) {
+        world_config = *p;
+        options.game.preset = preset;
+    } else {
+        std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
+        return 2;
+    }
+
+    try {
+        asio::io_context io(1);
+        net::server server(io, options, world_config);
+        asio::signal_set signals(io, SIGINT, SIGTERM);
+        signals.async_wait([&](const asio::error_code& ec, int signo) {
+            if (!ec) server.shutdown(signo == SIGINT ? "server interrupted (SIGINT)" : "server terminated (SIGTERM)");
+        });
+        server.start();
+        io.run();
+        net::log_line("stopped after %u ticks", server.current_tick());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "arena-server: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

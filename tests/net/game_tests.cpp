@@ -1,0 +1,116 @@
+// The game without sockets: participants are recorders of what they were sent.
+#include <catch2/catch.hpp>
+#include <limits>
+
+#include "protocol/decode.hpp"
+#include "protocol/verify.hpp"
+#include "server/net/game.hpp"
+#include "server/world/presets.hpp"
+
+using namespace arena;
+using namespace arena::net;
+
+namespace {
+
+struct fake_client : participant {
+    std::vector<protocol::frame_bytes> frames;
+    std::vector<uint32_t> snapshot_acks;
+    std::vector<uint32_t> snapshot_ticks;
+    std::optional<protocol::RejectCode> rejected;
+    void send(protocol::frame_bytes frame) override { frames.push_back(std::move(frame)); }
+    void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
+        auto frame = s.frame_with_ack(ack);
+        auto m = protocol::verify_message(frame, protocol::server_frame_limits);
+        REQUIRE(m);
+        auto snap = protocol::decode_snapshot(*m.value);
+        REQUIRE(snap);
+        snapshot_acks.push_back(snap.value.ack_sequence);
+        snapshot_ticks.push_back(snap.value.tick);
+    }
+    void reject(protocol::RejectCode code, std::string_view) override { rejected = code; }
+};
+
+game_config make_config(uint32_t max_players = 64, uint32_t max_inputs_per_second = 0) {
+    game_config c;
+    c.tick_rate = 60;
+    c.snapshot_rate = 20;
+    c.max_players = max_players;
+    c.max_inputs_per_second = max_inputs_per_second;
+    return c;
+}
+
+protocol::hello_msg hello(uint16_t version = protocol::protocol_version) { return {version, "tester", ""}; }
+
+}  // namespace
+
+TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[net][game]") {
+    game g(make_config(2), world::asteroids_preset());
+    fake_client c;
+    auto joined = g.join(c, hello());
+    REQUIRE(std::holds_alternative<uint32_t>(joined));
+    CHECK(c.frames.empty());
+    g.tick();
+    REQUIRE(c.frames.size() == 1);
+    auto m = protocol::verify_message(c.frames[0], protocol::server_frame_limits);
+    REQUIRE(m);
+    auto welcome = protocol::decode_welcome(*m.value);
+    REQUIRE(welcome);
+    CHECK(welcome.value.player_id == std::get<uint32_t>(joined));
+    const world::body* b = g.state().find(welcome.value.entity_id);
+    REQUIRE(b);
+    CHECK(b->owner == welcome.value.player_id);
+    CHECK(welcome.value.world_config == g.world_config_json());
+}
+
+TEST_CASE("version mismatch and a full server are refused with their codes", "[net][game]") {
+    game g(make_config(1), world::asteroids_preset());
+    fake_client a, b, c;
+    auto wrong = g.join(a, hello(99));
+    REQUIRE(std::holds_alternative<rejection>(wrong));
+    CHECK(std::get<rejection>(wrong).code == protocol::RejectCode::version_mismatch);
+    REQUIRE(std::holds_alternative<uint32_t>(g.join(b, hello())));
+    auto full = g.join(c, hello());
+    REQUIRE(std::holds_alternative<rejection>(full));
+    CHECK(std::get<rejection>(full).code == protocol::RejectCode::server_full);
+}
+
+TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last consumed sequence", "[net][game]") {
+    game g(make_config(), world::asteroids_preset());
+    fake_client c;
+    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    g.tick();  // spawns
+    for (uint32_t s = 1; s <= 12; ++s) {
+        REQUIRE_FALSE(g.receive_input(id, {s, 1, 0, 0}));
+        g.tick();
+    }
+    REQUIRE(c.snapshot_ticks.size() == 4);  // ticks 3, 6, 9, 12 of 13
+    for (size_t i = 1; i < c.snapshot_ticks.size(); ++i) CHECK(c.snapshot_ticks[i] == c.snapshot_ticks[i - 1] + 3);
+    // Tick k (1-based after the spawn tick) consumed input k.
+    CHECK(c.snapshot_acks.back() == c.snapshot_ticks.back() - 1);
+}
+
+TEST_CASE("a NaN input and an input flood are refused", "[net][game]") {
+    game g(make_config(64, 10), world::asteroids_preset());
+    fake_client c;
+    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    g.tick();
+    auto nan = g.receive_input(id, {1, std::numeric_limits<float>::quiet_NaN(), 0, 0});
+    REQUIRE(nan);
+    CHECK(nan->code == protocol::RejectCode::bad_input);
+    std::optional<rejection> flood;
+    for (uint32_t s = 1; s <= 20 && !flood; ++s) flood = g.receive_input(id, {s, 0, 0, 0});
+    REQUIRE(flood);
+    CHECK(flood->code == protocol::RejectCode::rate_limit);
+}
+
+TEST_CASE("a player who leaves loses its body at the next tick", "[net][game]") {
+    game g({}, world::asteroids_preset());
+    fake_client c;
+    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    g.tick();
+    const size_t with_player = g.state().bodies().size();
+    g.leave(id, "test");
+    g.tick();
+    CHECK(g.state().bodies().size() == with_player - 1);
+    CHECK(g.player_count() == 0);
+}

@@ -1,0 +1,205 @@
+#include "server_process.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "protocol/verify.hpp"
+
+namespace arena::test {
+
+namespace {
+
+std::string read_available(int fd) {
+    std::string out;
+    char buf[4096];
+    while (true) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n <= 0) break;
+        out.append(buf, static_cast<size_t>(n));
+    }
+    return out;
+}
+
+}  // namespace
+
+server_process::server_process(const std::vector<std::string>& args) {
+    int out_pipe[2], err_pipe[2];
+    if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
+    const std::string binary = std::string(ARENA_BIN_DIR) + "/arena-server";
+    std::vector<std::string> all = {binary, "--port", "0"};
+    all.insert(all.end(), args.begin(), args.end());
+    pid_ = ::fork();
+    if (pid_ == 0) {
+        ::dup2(out_pipe[1], 1);
+        ::dup2(err_pipe[1], 2);
+        ::close(out_pipe[0]);
+        ::close(err_pipe[0]);
+        std::vector<char*> argv;
+        for (auto& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(binary.c_str(), argv.data());
+        ::_exit(127);
+    }
+    ::close(out_pipe[1]);
+    ::close(err_pipe[1]);
+    stdout_fd_ = out_pipe[0];
+    stderr_fd_ = err_pipe[0];
+    ::fcntl(stderr_fd_, F_SETFL, O_NONBLOCK);
+    std::string line;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (std::chrono::steady_clock::now() < deadline) {
+        pollfd p{stdout_fd_, POLLIN, 0};
+        if (::poll(&p, 1, 100) <= 0) continue;
+        char c;
+        if (::read(stdout_fd_, &c, 1) != 1) break;
+        if (c != '\n') {
+            line += c;
+            continue;
+        }
+        const auto at = line.rfind(':');
+        if (line.rfind("listening on ", 0) == 0 && at != std::string::npos) {
+            port_ = static_cast<uint16_t>(std::stoi(line.substr(at + 1)));
+            return;
+        }
+        line.clear();
+    }
+    stop(SIGKILL);
+    throw std::runtime_error("arena-server did not print 'listening on': " + log());
+}
+
+server_process::~server_process() {
+    if (pid_ > 0) stop(SIGKILL);
+    if (stdout_fd_ >= 0) ::close(stdout_fd_);
+    if (stderr_fd_ >= 0) ::close(stderr_fd_);
+}
+
+int server_process::stop(int signal, std::chrono::milliseconds timeout) {
+    if (pid_ <= 0) return -1;
+    ::kill(pid_, signal);
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    int status = 0;
+    while (std::chrono::steady_clock::now() < deadline) {
+        log();  // keep the pipe drained so the server never blocks on its log
+        if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+            pid_ = -1;
+            return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return -1;
+}
+
+long server_process::rss_kib() const {
+    std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmRSS:") {
+            long kib = 0;
+            status >> kib;
+            return kib;
+        }
+        status.ignore(1 << 12, '\n');
+    }
+    return -1;
+}
+
+std::string server_process::log() {
+    log_ += read_available(stderr_fd_);
+    return log_;
+}
+
+test_client::test_client(uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(port);
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+        throw std::runtime_error(std::string("connect failed: ") + std::strerror(errno));
+    int one = 1;
+    ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+}
+
+test_client::~test_client() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+void test_client::send_bytes(const std::vector<uint8_t>& bytes) {
+    size_t sent = 0;
+    while (sent < bytes.size()) {
+        const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+        if (n <= 0) return;  // the server closed: the caller checks for that
+        sent += static_cast<size_t>(n);
+    }
+}
+
+bool test_client::fill(size_t want, std::chrono::steady_clock::time_point deadline) {
+    while (buffer_.size() < want) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) return false;
+        pollfd p{fd_, POLLIN, 0};
+        if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
+        uint8_t buf[65536];
+        const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+        if (n <= 0) return false;
+        buffer_.insert(buffer_.end(), buf, buf + n);
+    }
+    return true;
+}
+
+std::optional<std::vector<uint8_t>> test_client::read_frame(std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    if (!fill(4, deadline)) return std::nullopt;
+    const uint32_t length = buffer_[0] | buffer_[1] << 8 | buffer_[2] << 16 | static_cast<uint32_t>(buffer_[3]) << 24;
+    if (!fill(4 + length, deadline)) return std::nullopt;
+    std::vector<uint8_t> frame(buffer_.begin(), buffer_.begin() + 4 + length);
+    buffer_.erase(buffer_.begin(), buffer_.begin() + 4 + length);
+    return frame;
+}
+
+std::optional<std::vector<uint8_t>> test_client::read_until(protocol::Payload type, std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (true) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) return std::nullopt;
+        auto frame = read_frame(left);
+        if (!frame) return std::nullopt;
+        const protocol::Message* m = message_of(*frame);
+        if (m && m->payload_type() == type) return frame;
+    }
+}
+
+bool test_client::closed_by_peer(std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+        pollfd p{fd_, POLLIN, 0};
+        if (::poll(&p, 1, 50) <= 0) continue;
+        uint8_t buf[65536];
+        const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+        if (n == 0) return true;
+        if (n < 0) return errno == ECONNRESET;
+    }
+    return false;
+}
+
+const protocol::Message* message_of(const std::vector<uint8_t>& frame) {
+    auto verified = protocol::verify_message(frame, protocol::server_frame_limits);
+    return verified ? verified.value : nullptr;
+}
+
+}  // namespace arena::test

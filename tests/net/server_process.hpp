@@ -1,0 +1,69 @@
+#pragma once
+// Test helpers: an arena-server child process on a free loopback port, and a blocking TCP
+// client that speaks the protocol. Plain POSIX, so the tests need no Asio.
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "protocol/arena_generated.h"
+#include "protocol/messages.hpp"
+
+namespace arena::test {
+
+class server_process {
+public:
+    // Starts build/bin/arena-server --port 0 with `args`, and waits for "listening on".
+    explicit server_process(const std::vector<std::string>& args);
+    ~server_process();
+    server_process(const server_process&) = delete;
+    server_process& operator=(const server_process&) = delete;
+
+    uint16_t port() const { return port_; }
+    pid_t pid() const { return pid_; }
+    // Sends a signal and waits for the exit status (or -1 after `timeout`).
+    int stop(int signal, std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+    // Resident set size in KiB, from /proc.
+    long rss_kib() const;
+    // Everything the server wrote to stderr so far (its log).
+    std::string log();
+
+private:
+    pid_t pid_ = -1;
+    int stdout_fd_ = -1;
+    int stderr_fd_ = -1;
+    uint16_t port_ = 0;
+    std::string log_;
+};
+
+class test_client {
+public:
+    explicit test_client(uint16_t port);
+    ~test_client();
+    test_client(const test_client&) = delete;
+    test_client& operator=(const test_client&) = delete;
+
+    void send_bytes(const std::vector<uint8_t>& bytes);
+    void send_frame(const protocol::frame_bytes& frame) { send_bytes(frame); }
+    // The next frame's bytes, or nothing on timeout or a closed connection.
+    std::optional<std::vector<uint8_t>> read_frame(std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+    // Reads frames until one of `type` arrives (others are dropped).
+    std::optional<std::vector<uint8_t>> read_until(protocol::Payload type,
+                                                   std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+    // True when the server closed the connection within `timeout` (frames before are skipped).
+    bool closed_by_peer(std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+    int fd() const { return fd_; }
+
+private:
+    bool fill(size_t want, std::chrono::steady_clock::time_point deadline);
+    int fd_ = -1;
+    std::vector<uint8_t> buffer_;
+};
+
+// The verified Message inside a frame read by test_client (aligned copy kept by the caller).
+const protocol::Message* message_of(const std::vector<uint8_t>& frame);
+
+}  // namespace arena::test

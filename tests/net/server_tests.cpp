@@ -1,0 +1,207 @@
+// arena-server end to end over loopback, with real sockets.
+#include <signal.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "protocol/decode.hpp"
+#include "protocol/version.hpp"
+#include "server_process.hpp"
+
+using namespace arena;
+using namespace arena::test;
+using namespace std::chrono_literals;
+using protocol::Payload;
+
+namespace {
+
+struct joined_client {
+    test_client client;
+    protocol::welcome_info welcome;
+    explicit joined_client(uint16_t port, const std::string& name = "tester") : client(port) {
+        client.send_frame(protocol::encode_hello(protocol::protocol_version, name, ""));
+        auto frame = client.read_until(Payload::Welcome);
+        REQUIRE(frame);
+        auto w = protocol::decode_welcome(*message_of(*frame));
+        REQUIRE(w);
+        welcome = w.value;
+    }
+};
+
+protocol::reject_msg expect_reject(test_client& c) {
+    auto frame = c.read_until(Payload::Reject);
+    REQUIRE(frame);
+    auto r = protocol::decode_reject(*message_of(*frame));
+    REQUIRE(r);
+    CHECK(c.closed_by_peer());
+    return r.value;
+}
+
+// Snapshots a client receives in `duration` while it reads everything.
+int count_snapshots(test_client& c, std::chrono::milliseconds duration) {
+    int count = 0;
+    const auto end = std::chrono::steady_clock::now() + duration;
+    while (std::chrono::steady_clock::now() < end) {
+        auto frame = c.read_frame(20ms);
+        if (frame && message_of(*frame) && message_of(*frame)->payload_type() == Payload::Snapshot) ++count;
+    }
+    return count;
+}
+
+std::string temp_path(const std::string& name) { return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name; }
+
+}  // namespace
+
+TEST_CASE("a client joins, sends inputs and receives snapshots that follow them", "[net][e2e]") {
+    server_process server({"--preset", "asteroids"});
+    joined_client c(server.port());
+    CHECK(c.welcome.tick_rate == 60);
+    CHECK(c.welcome.snapshot_rate == 20);
+    CHECK(c.welcome.preset == "asteroids");
+
+    std::vector<uint32_t> ticks, acks;
+    const protocol::BodyState* own = nullptr;
+    std::vector<uint8_t> last_snapshot;
+    uint32_t sequence = 0;
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < 1500ms) {
+        c.client.send_frame(protocol::encode_input({++sequence, 1.0f, 0.0f, 0}));
+        const auto next = start + sequence * 16667us;
+        while (std::chrono::steady_clock::now() < next) {
+            auto frame = c.client.read_frame(std::chrono::duration_cast<std::chrono::milliseconds>(next - std::chrono::steady_clock::now()) + 1ms);
+            if (!frame) continue;
+            const protocol::Message* m = message_of(*frame);
+            REQUIRE(m);
+            if (m->payload_type() != Payload::Snapshot) continue;
+            auto snap = protocol::decode_snapshot(*m);
+            REQUIRE(snap);
+            ticks.push_back(snap.value.tick);
+            acks.push_back(snap.value.ack_sequence);
+            last_snapshot = *frame;
+        }
+    }
+    REQUIRE(ticks.size() >= 20);
+    for (size_t i = 1; i < ticks.size(); ++i) {
+        CHECK(ticks[i] == ticks[i - 1] + 3);  // every third tick at 60/20
+        CHECK(acks[i] >= acks[i - 1]);
+    }
+    CHECK(acks.back() > 0);
+    CHECK(acks.back() <= sequence);
+    auto snap = protocol::decode_snapshot(*message_of(last_snapshot));
+    for (const auto& b : snap.value.bodies)
+        if (b.id() == c.welcome.entity_id) own = &b;
+    REQUIRE(own);
+    CHECK(own->owner() == c.welcome.player_id);
+    // Full thrust along the facing (angle 0, no turn): the body speeds up along +x.
+    CHECK(own->vx() > 5.0f);
+    CHECK(std::fabs(own->vy()) < 0.5f);
+    CHECK(own->angle() == 0.0f);
+}
+
+TEST_CASE("ping is answered with pong", "[net][e2e]") {
+    server_process server({});
+    joined_client c(server.port());
+    c.client.send_frame(protocol::encode_ping(123456789));
+    auto frame = c.client.read_until(Payload::Pong);
+    REQUIRE(frame);
+    auto pong = protocol::decode_pong(*message_of(*frame));
+    REQUIRE(pong);
+    CHECK(pong.value.client_time == 123456789);
+}
+
+TEST_CASE("version mismatch, a full server and a missing hello are rejected with their codes", "[net][e2e]") {
+    server_process server({"--max-players", "1", "--handshake-timeout", "0.3"});
+    {
+        test_client c(server.port());
+        c.send_frame(protocol::encode_hello(protocol::protocol_version + 1, "future", ""));
+        CHECK(expect_reject(c).code == protocol::RejectCode::version_mismatch);
+    }
+    joined_client first(server.port());
+    {
+        test_client c(server.port());
+        c.send_frame(protocol::encode_hello(protocol::protocol_version, "second", ""));
+        CHECK(expect_reject(c).code == protocol::RejectCode::server_full);
+    }
+    {
+        test_client c(server.port());
+        CHECK(expect_reject(c).code == protocol::RejectCode::timeout);
+    }
+}
+
+TEST_CASE("garbage, an oversize length and a NaN input close only that client", "[net][e2e]") {
+    server_process server({});
+    joined_client good(server.port(), "good");
+    struct bad_case {
+        const char* name;
+        std::function<void(test_client&)> misbehave;
+        protocol::RejectCode expected;
+    };
+    const std::vector<bad_case> cases = {
+        {"garbage", [](test_client& c) { c.send_bytes({16, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}); },
+         protocol::RejectCode::bad_request},
+        {"oversize", [](test_client& c) { c.send_bytes({0x01, 0x00, 0x01, 0x00}); }, protocol::RejectCode::too_large},
+        {"nan",
+         [](test_client& c) {
+             c.send_frame(protocol::encode_input({1, std::numeric_limits<float>::quiet_NaN(), 0, 0}));
+         },
+         protocol::RejectCode::bad_input},
+    };
+    for (const auto& bad : cases) {
+        INFO(bad.name);
+        joined_client offender(server.port(), bad.name);
+        bad.misbehave(offender.client);
+        CHECK(expect_reject(offender.client).code == bad.expected);
+    }
+    // The good client kept its full snapshot rate throughout, and still does.
+    CHECK(count_snapshots(good.client, 1000ms) >= 18);
+    const std::string log = server.log();
+    CHECK(log.find("code=too_large") != std::string::npos);
+    CHECK(log.find("code=bad_input") != std::string::npos);
+}
+
+TEST_CASE("a client that never reads keeps the server's memory bounded and is dropped", "[net][e2e]") {
+    // 3000 rocks: each snapshot is about 96 KB, so an unread socket fills within a second.
+    const std::string config = temp_path("big.json");
+    std::ofstream(config) << R"({"preset": "asteroids", "size": [3000, 3000], "rocks": {"count": 3000}})";
+    server_process server({"--config", config, "--stall-timeout", "1"});
+    joined_client good(server.port(), "good");
+    joined_client sleeper(server.port(), "sleeper");  // never reads again
+    count_snapshots(good.client, 500ms);
+    const long rss_before = server.rss_kib();
+    CHECK(count_snapshots(good.client, 3000ms) >= 50);
+    const long rss_after = server.rss_kib();
+    INFO("rss before " << rss_before << " KiB, after " << rss_after << " KiB");
+    CHECK(rss_after - rss_before < 4096);  // at most one pending snapshot per client
+    CHECK(server.log().find("code=slow_consumer") != std::string::npos);
+    CHECK(count_snapshots(good.client, 1000ms) >= 18);
+    std::remove(config.c_str());
+}
+
+TEST_CASE("SIGTERM says bye to every client, writes the stats and exits 0", "[net][e2e]") {
+    const std::string stats = temp_path("stats.json");
+    server_process server({"--stats-json", stats});
+    joined_client c(server.port());
+    count_snapshots(c.client, 300ms);
+    ::kill(server.pid(), SIGTERM);
+    auto bye = c.client.read_until(Payload::Bye);
+    REQUIRE(bye);
+    CHECK(protocol::decode_bye(*message_of(*bye)).value.reason.find("SIGTERM") != std::string::npos);
+    CHECK(server.stop(0) == 0);
+    std::ifstream in(stats);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("\"ticks\"") != std::string::npos);
+    CHECK(text.find("\"joins\": 1") != std::string::npos);
+    std::remove(stats.c_str());
+}
+
+TEST_CASE("a match with a duration ends cleanly", "[net][e2e]") {
+    server_process server({"--duration", "0.5"});
+    joined_client c(server.port());
+    auto bye = c.client.read_until(Payload::Bye, 3000ms);
+    REQUIRE(bye);
+    CHECK(server.stop(0, 3000ms) == 0);
+}
