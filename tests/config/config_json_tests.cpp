@@ -1,0 +1,54 @@
+#include <catch2/catch.hpp>
+#include <variant>
+
+#include "server/config/config_json.hpp"
+#include "server/world/hash.hpp"
+#include "server/world/presets.hpp"
+
+using namespace arena;
+
+namespace {
+
+std::string error_of(std::string_view text) {
+    auto r = config::parse_config_json(text);
+    REQUIRE(std::holds_alternative<config::config_error>(r));
+    return std::get<config::config_error>(r).message;
+}
+
+}  // namespace
+
+TEST_CASE("a config survives JSON bit for bit", "[config]") {
+    for (const auto& preset : {world::asteroids_preset(), world::platformer_preset()}) {
+        auto back = config::parse_config_json(config::config_to_json(preset));
+        REQUIRE(std::holds_alternative<world::world_config>(back));
+        CHECK(world::config_hash(std::get<world::world_config>(back)) == world::config_hash(preset));
+    }
+}
+
+TEST_CASE("a config file starts from a preset and overrides fields", "[config]") {
+    auto r = config::parse_config_json(R"({"preset": "platformer", "gravity": [0, -3.5], "rocks": {"count": 2}})");
+    REQUIRE(std::holds_alternative<world::world_config>(r));
+    const auto& c = std::get<world::world_config>(r);
+    CHECK(c.gravity.y() == -3.5f);
+    CHECK(c.rocks.count == 2);
+    CHECK(c.boundary == world::boundary::walls);  // from the preset
+}
+
+TEST_CASE("a wrong field is named in the error", "[config]") {
+    CHECK(error_of(R"({"gravty": [0, 1]})").find("'gravty'") != std::string::npos);
+    CHECK(error_of(R"({"rocks": {"cout": 3}})").find("'rocks.cout'") != std::string::npos);
+    CHECK(error_of(R"({"dt": "fast"})").find("'dt' must be a number") != std::string::npos);
+    CHECK(error_of(R"({"gravity": [0]})").find("'gravity'") != std::string::npos);
+    CHECK(error_of(R"({"boundary": "donut"})").find("one of: open, wrap, walls, floor") != std::string::npos);
+    CHECK(error_of(R"({"preset": "tetris"})").find("unknown preset 'tetris'") != std::string::npos);
+    CHECK(error_of(R"({"dt": 0})").find("'dt'") != std::string::npos);
+    CHECK(error_of(R"({"fluids": [{"min": [0, 0], "max": [1, 1], "densty": 3}]})").find("'fluids[0].densty'") !=
+          std::string::npos);
+    CHECK(error_of("{ not json").find("invalid JSON") != std::string::npos);
+}
+
+TEST_CASE("a missing config file is reported with its path", "[config]") {
+    auto r = config::load_config_file("/nonexistent/arena.json");
+    REQUIRE(std::holds_alternative<config::config_error>(r));
+    CHECK(std::get<config::config_error>(r).message.find("/nonexistent/arena.json") != std::string::npos);
+}

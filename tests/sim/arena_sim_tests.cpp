@@ -1,0 +1,104 @@
+// arena-sim as a user runs it.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "server/sim/single_body.hpp"
+
+namespace {
+
+struct run_result {
+    int status;
+    std::string out;
+};
+
+run_result run(const std::string& args) {
+    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-sim " + args + " 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe);
+    std::string out;
+    char buf[4096];
+    while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+    const int status = ::pclose(pipe);
+    return {WEXITSTATUS(status), out};
+}
+
+std::string last_line(const std::string& text) {
+    const auto end = text.find_last_not_of('\n');
+    const auto start = text.rfind('\n', end);
+    return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+}
+
+}  // namespace
+
+TEST_CASE("arena-sim prints the lecture's explicit Euler table", "[sim]") {
+    const run_result r = run("--integrator explicit --dt 1 --steps 10 --mass 1 --force 10,0");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.rfind("t,x,y,vx,vy,angle,omega\n1,0,0,10,0,0,0\n2,10,0,20,0,0,0\n", 0) == 0);
+    CHECK(last_line(r.out) == "10,450,0,100,0,0,0");
+}
+
+TEST_CASE("arena-sim defaults to semi-implicit Euler", "[sim]") {
+    const run_result r = run("--dt 1 --steps 10 --force 10,0");
+    REQUIRE(r.status == 0);
+    CHECK(last_line(r.out) == "10,550,0,100,0,0,0");
+}
+
+TEST_CASE("arena-sim slides a body to rest under friction", "[sim]") {
+    const run_result r = run("--dt 0.01 --steps 400 --velocity 10,0 --gravity 0,-9.81 --friction 0.5");
+    REQUIRE(r.status == 0);
+    std::istringstream row(last_line(r.out));
+    double t, x, y, vx;
+    char comma;
+    row >> t >> comma >> x >> comma >> y >> comma >> vx;
+    CHECK(vx == 0.0);
+    CHECK(y == 0.0);
+    CHECK(x == Approx(100 / (2 * 0.5 * 9.81)).epsilon(0.01));
+}
+
+TEST_CASE("arena-sim runs a preset and prints its hash and step time", "[sim]") {
+    const run_result a = run("--preset asteroids --bodies 200 --steps 60 --seed 3");
+    const run_result b = run("--preset asteroids --bodies 200 --steps 60 --seed 3");
+    REQUIRE(a.status == 0);
+    const auto at = a.out.find("hash=");
+    REQUIRE(at != std::string::npos);
+    CHECK(a.out.substr(at, 22) == b.out.substr(b.out.find("hash="), 22));
+    CHECK(a.out.find("ms_per_step=") != std::string::npos);
+    CHECK(a.out.find("bodies=200") != std::string::npos);
+}
+
+TEST_CASE("arena-sim draws the impact of the time step as an SVG", "[sim]") {
+    const std::string path = "/tmp/arena-sim-test-" + std::to_string(::getpid()) + ".svg";
+    const run_result r = run("--integrator explicit --dt 1 --steps 10 --force 10,0 --plot " + path);
+    REQUIRE(r.status == 0);
+    std::ifstream in(path);
+    std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(svg.rfind("<svg", 0) == 0);
+    CHECK(svg.find("exact") != std::string::npos);
+    CHECK(svg.find("dt = 1.0000 s") != std::string::npos);
+    CHECK(svg.find("dt = 0.1000 s") != std::string::npos);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("arena-sim refuses bad flags with a one-line error and exit code 2", "[sim]") {
+    for (const char* args : {"--frobnicate", "--force 1,x", "--integrator leapfrog", "--friction 0.5",
+                             "--preset tetris", "--dt -1"}) {
+        INFO(args);
+        const run_result r = run(args);
+        CHECK(r.status == 2);
+        CHECK(r.out.find("arena-sim:") == 0);
+        CHECK(r.out.find('\n') == r.out.size() - 1);  // one line
+    }
+}
+
+TEST_CASE("the exact solution is known only for constant acceleration", "[sim]") {
+    arena::sim::single_body_scenario s;
+    s.force = {10, 0};
+    REQUIRE(arena::sim::exact_solution(s, 10));
+    CHECK(arena::sim::exact_solution(s, 10)->x == 500.0f);
+    s.friction = 0.1f;
+    CHECK_FALSE(arena::sim::exact_solution(s, 10));
+}
