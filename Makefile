@@ -11,7 +11,7 @@ endif
 # Debian packages the build and the tests need (see ../shared/DEPS.md).
 PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
-  libclang-rt-14-dev procps
+  libclang-rt-14-dev libsodium-dev procps
 
 .PHONY: all deps build run test test-fast bench clean
 

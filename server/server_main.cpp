@@ -36,10 +36,26 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--stall-timeout", stall_s, "seconds a client may block our writes before it is dropped (default 5)")
         ->check(CLI::PositiveNumber);
+    app.add_option("--socket-send-buffer", options.socket_send_buffer, "kernel send buffer per client, bytes (default 262144)")
+        ->check(CLI::Range(4096, 64 << 20));
     app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
         ->check(CLI::PositiveNumber);
+    std::string token_secret_path;
+    app.add_option("--token-secret", token_secret_path,
+                   "admit only Hellos with a token signed with this secret file (see arena-token)");
+    app.add_option("--reconnect-grace", options.game.reconnect_grace_s,
+                   "seconds a dropped player's body waits for it to come back with the same token (default 10)")
+        ->check(CLI::NonNegativeNumber);
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    if (!token_secret_path.empty()) {
+        auto secret = auth::token_secret::load(token_secret_path);
+        if (auto* e = std::get_if<auth::token_error>(&secret)) {
+            std::fprintf(stderr, "arena-server: --token-secret: %s\n", e->reason.c_str());
+            return 2;
+        }
+        options.token_secret = std::get<auth::token_secret>(std::move(secret));
+    }
     options.handshake_timeout_ns = static_cast<int64_t>(handshake_s * 1e9);
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
 

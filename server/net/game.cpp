@@ -19,7 +19,8 @@ uint32_t game::input_limit() const {
     return config_.max_inputs_per_second ? config_.max_inputs_per_second : 2u * config_.tick_rate + 10u;
 }
 
-std::variant<uint32_t, rejection> game::join(participant& who, const protocol::hello_msg& hello) {
+std::variant<uint32_t, rejection> game::join(participant& who, const protocol::hello_msg& hello,
+                                             const std::string& identity) {
     if (hello.protocol_version != protocol::protocol_version)
         return rejection{RejectCode::version_mismatch, "protocol version " + std::to_string(hello.protocol_version) +
                                                            " is not supported; this server speaks " +
@@ -28,29 +29,73 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
         return rejection{RejectCode::bad_request, "name longer than " + std::to_string(config_.max_name_bytes) + " bytes"};
     if (hello.token.size() > config_.max_token_bytes)
         return rejection{RejectCode::bad_request, "token longer than " + std::to_string(config_.max_token_bytes) + " bytes"};
+    if (!identity.empty()) {
+        for (auto& [id, p] : players_) {
+            if (p.identity != identity) continue;
+            // The same player again: a reconnection, or a new connection taking over.
+            if (p.who) {
+                participant* old = p.who;
+                p.who = nullptr;  // detach first: the old connection's leave must not touch the player
+                old->say_bye("signed in from another connection");
+                ++counters_.takeovers;
+            } else {
+                ++counters_.reconnects;
+            }
+            p.who = &who;
+            p.inputs = input_buffer(config_.input_buffer);
+            p.last_received_sequence = 0;  // a new connection numbers its inputs from 1 again
+            if (p.body_id != 0) pending_welcomes_.push_back(id);
+            log_line("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
+            return id;
+        }
+    }
     if (players_.size() >= config_.max_players)
         return rejection{RejectCode::server_full, "server full (" + std::to_string(config_.max_players) + " players)"};
     const uint32_t id = next_player_id_++;
-    players_.emplace(id, player{&who, hello.name, 0, input_buffer(config_.input_buffer), 0, 0});
+    player p{&who, hello.name, identity, 0, 0, input_buffer(config_.input_buffer), 0, 0};
+    players_.emplace(id, std::move(p));
     pending_joins_.push_back(id);
     return id;
 }
 
-void game::leave(uint32_t player_id, std::string_view reason) {
+void game::leave(uint32_t player_id, const participant& who, std::string_view reason, bool connection_lost) {
     auto it = players_.find(player_id);
-    if (it == players_.end()) return;
+    if (it == players_.end() || it->second.who != &who) return;
+    player& p = it->second;
+    if (connection_lost && !p.identity.empty() && p.body_id != 0 && config_.reconnect_grace_s > 0) {
+        p.who = nullptr;
+        p.disconnected_at_tick = world_.tick();
+        log_line("disconnect player=%u name=%s reason=%.*s (body kept for %.0f s)", player_id, p.name.c_str(),
+                 static_cast<int>(reason.size()), reason.data(), config_.reconnect_grace_s);
+        return;
+    }
+    remove_player(it, reason);
+}
+
+void game::remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason) {
     player& p = it->second;
     if (p.body_id != 0) {
         pending_leaves_.push_back(p.body_id);
     } else {
-        std::erase(pending_joins_, player_id);
+        std::erase(pending_joins_, it->first);
     }
+    std::erase(pending_welcomes_, it->first);
     counters_.input_underruns += p.inputs.underruns();
     counters_.input_overflows += p.inputs.overflows();
     ++counters_.leaves;
-    log_line("leave player=%u name=%s reason=%.*s", player_id, p.name.c_str(), static_cast<int>(reason.size()),
+    log_line("leave player=%u name=%s reason=%.*s", it->first, p.name.c_str(), static_cast<int>(reason.size()),
              reason.data());
     players_.erase(it);
+}
+
+void game::expire_disconnected() {
+    const auto grace_ticks = static_cast<uint32_t>(config_.reconnect_grace_s * config_.tick_rate);
+    for (auto it = players_.begin(); it != players_.end();) {
+        auto next = std::next(it);
+        if (!it->second.who && world_.tick() - it->second.disconnected_at_tick >= grace_ticks)
+            remove_player(it, "reconnect grace period over");
+        it = next;
+    }
 }
 
 std::optional<rejection> game::receive_input(uint32_t player_id, const protocol::input_msg& input) {
@@ -72,6 +117,7 @@ std::optional<rejection> game::receive_input(uint32_t player_id, const protocol:
 }
 
 void game::tick() {
+    expire_disconnected();
     replay::tick_record record;
     record.tick = world_.tick();
     record.joins = pending_joins_;
@@ -79,11 +125,17 @@ void game::tick() {
     pending_joins_.clear();
     pending_leaves_.clear();
     for (auto& [id, p] : players_) {
-        if (p.body_id != 0) record.inputs.push_back({p.body_id, p.inputs.consume()});
+        // A disconnected player's body coasts: no thrust, no turn, no buttons.
+        if (p.body_id != 0) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
     }
     const std::vector<uint32_t> spawned = replay::apply_tick(world_, record);
     if (on_tick) on_tick(record, world_.hash());
     spawn_pending(record.joins, spawned);
+    for (uint32_t id : pending_welcomes_) {
+        auto it = players_.find(id);
+        if (it != players_.end() && it->second.who) send_welcome(id, it->second);
+    }
+    pending_welcomes_.clear();
 
     // The input rate is counted per second of ticks.
     if (world_.tick() % config_.tick_rate == 0) {
@@ -99,25 +151,29 @@ void game::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<
         if (it == players_.end()) continue;
         player& p = it->second;
         if (bodies[i] == 0) {
-            p.who->reject(RejectCode::server_full, "the world has no room for another body");
+            if (p.who) p.who->reject(RejectCode::server_full, "the world has no room for another body");
             continue;
         }
         p.body_id = bodies[i];
         ++counters_.joins;
         counters_.players_peak = std::max<uint32_t>(counters_.players_peak, static_cast<uint32_t>(players_.size()));
-        protocol::welcome_info welcome;
-        welcome.player_id = owners[i];
-        welcome.entity_id = p.body_id;
-        welcome.tick = world_.tick();
-        welcome.tick_rate = config_.tick_rate;
-        welcome.snapshot_rate = config_.snapshot_rate;
-        welcome.preset = config_.preset;
-        welcome.world_config = world_config_json_;
-        welcome.world_config_hash = world_config_hash_;
-        welcome.world_version = world::world_version;
-        p.who->send(protocol::encode_welcome(welcome));
+        if (p.who) send_welcome(owners[i], p);
         log_line("join player=%u body=%u name=%s", owners[i], p.body_id, p.name.c_str());
     }
+}
+
+void game::send_welcome(uint32_t player_id, const player& p) {
+    protocol::welcome_info welcome;
+    welcome.player_id = player_id;
+    welcome.entity_id = p.body_id;
+    welcome.tick = world_.tick();
+    welcome.tick_rate = config_.tick_rate;
+    welcome.snapshot_rate = config_.snapshot_rate;
+    welcome.preset = config_.preset;
+    welcome.world_config = world_config_json_;
+    welcome.world_config_hash = world_config_hash_;
+    welcome.world_version = world::world_version;
+    p.who->send(protocol::encode_welcome(welcome));
 }
 
 void game::broadcast_snapshot() {
@@ -129,7 +185,7 @@ void game::broadcast_snapshot() {
     }
     snapshot_.build(world_.tick(), body_states_);
     for (auto& [id, p] : players_) {
-        if (p.body_id == 0) continue;
+        if (p.body_id == 0 || !p.who) continue;
         p.who->send_snapshot(snapshot_, p.inputs.last_consumed_sequence());
         ++counters_.snapshots_sent;
     }

@@ -29,6 +29,7 @@ struct game_config {
     uint32_t max_token_bytes = 1024;
     std::string preset;               // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
+    double reconnect_grace_s = 10;    // a dropped player's body waits this long for it
 };
 
 struct rejection {
@@ -44,6 +45,8 @@ struct game_counters {
     uint64_t input_overflows = 0;
     uint64_t inputs_received = 0;
     uint64_t stale_inputs = 0;  // sequence not above the last received: ignored
+    uint64_t reconnects = 0;
+    uint64_t takeovers = 0;
     uint32_t players_peak = 0;
 };
 
@@ -52,9 +55,15 @@ public:
     game(const game_config& config, const world::world_config& world_config);
 
     // A Hello: the player id, or why not. The body spawns and Welcome is sent at the next tick.
-    std::variant<uint32_t, rejection> join(participant& who, const protocol::hello_msg& hello);
-    // The player leaves (Bye, closed socket, dropped): its body goes at the next tick.
-    void leave(uint32_t player_id, std::string_view reason);
+    // `identity` (from a verified token, or the client's opaque token; empty: none) lets a
+    // player whose connection dropped come back to the same player and body within the grace
+    // period; a second connection with a connected identity takes the player over.
+    std::variant<uint32_t, rejection> join(participant& who, const protocol::hello_msg& hello,
+                                           const std::string& identity = {});
+    // `who` is gone. After a Bye or a refusal its body goes at the next tick; after a lost
+    // connection the body waits reconnect_grace_s for the same identity. A call from a
+    // participant that no longer holds the player (it was taken over) changes nothing.
+    void leave(uint32_t player_id, const participant& who, std::string_view reason, bool connection_lost = false);
     // An Input from a joined player: buffered for the world, or why it ends the connection.
     std::optional<rejection> receive_input(uint32_t player_id, const protocol::input_msg& input);
 
@@ -73,8 +82,10 @@ public:
 
 private:
     struct player {
-        participant* who = nullptr;
+        participant* who = nullptr;  // nullptr while disconnected within the grace period
         std::string name;
+        std::string identity;
+        uint32_t disconnected_at_tick = 0;
         uint32_t body_id = 0;  // 0 until spawned
         input_buffer inputs;
         uint32_t last_received_sequence = 0;
@@ -82,6 +93,9 @@ private:
     };
 
     void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
+    void send_welcome(uint32_t player_id, const player& p);
+    void remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason);
+    void expire_disconnected();
     void broadcast_snapshot();
     uint32_t input_limit() const;
 
@@ -92,6 +106,7 @@ private:
     std::map<uint32_t, player> players_;   // by player id: a deterministic order
     std::vector<uint32_t> pending_joins_;  // player ids whose body spawns next tick
     std::vector<uint32_t> pending_leaves_; // body ids to remove next tick
+    std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
     protocol::snapshot_encoder snapshot_;
     std::vector<protocol::BodyState> body_states_;

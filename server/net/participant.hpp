@@ -18,6 +18,8 @@ public:
     virtual void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) = 0;
     // Sends `code` and `reason` as a Reject (or a Bye when joined), then closes.
     virtual void reject(protocol::RejectCode code, std::string_view reason) = 0;
+    // Sends Bye(reason) and closes (another connection took this player over).
+    virtual void say_bye(std::string_view reason) = 0;
 };
 
 }  // namespace arena::net

@@ -123,7 +123,16 @@ void server::log_stats(int64_t now) {
 
 std::variant<uint32_t, rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
     if (stopping_) return rejection{protocol::RejectCode::shutting_down, "the server is shutting down"};
-    auto joined = game_.join(s, hello);
+    std::string identity = hello.token;  // an open server: the token is the client's own key
+    protocol::hello_msg named = hello;
+    if (options_.token_secret) {
+        auto claims = options_.token_secret->verify(hello.token, auth::unix_now());
+        if (auto* e = std::get_if<auth::token_error>(&claims)) return rejection{protocol::RejectCode::unauthorized, e->reason};
+        // The signed name is the player's identity, whatever name the Hello claims.
+        named.name = std::get<auth::token_claims>(claims).name;
+        identity = "signed:" + named.name;
+    }
+    auto joined = game_.join(s, named, identity);
     if (std::holds_alternative<uint32_t>(joined))
         log_line("hello player=%u name=%s from %s", std::get<uint32_t>(joined), hello.name.c_str(), s.peer().c_str());
     return joined;
@@ -133,8 +142,8 @@ std::optional<rejection> server::on_input(session& s, const protocol::input_msg&
     return game_.receive_input(s.player_id(), input);
 }
 
-void server::on_closed(session& s, std::string_view reason) {
-    if (s.player_id() != 0) game_.leave(s.player_id(), reason);
+void server::on_closed(session& s, std::string_view reason, bool connection_lost) {
+    if (s.player_id() != 0) game_.leave(s.player_id(), s, reason, connection_lost && !stopping_);
     ++drops_[std::string(reason.substr(0, reason.find(':')))];
 }
 
@@ -213,6 +222,8 @@ void server::write_stats_json(const std::string& path) const {
         {"input_underruns", c.input_underruns},
         {"input_overflows", c.input_overflows},
         {"stale_inputs", c.stale_inputs},
+        {"reconnects", c.reconnects},
+        {"takeovers", c.takeovers},
         {"snapshots_sent", c.snapshots_sent},
         {"bytes_in", run_traffic_.bytes_in},
         {"bytes_out", run_traffic_.bytes_out},

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "server/auth/join_token.hpp"
 #include "server/net/duration_histogram.hpp"
 #include "server/net/game.hpp"
 #include "server/net/tick_clock.hpp"
@@ -27,9 +28,13 @@ struct server_options {
     int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
     int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
     uint32_t max_control_frames = 64;     // queued control messages per client
+    // Kernel send buffer per client, bytes: bounds the memory a client that does not read can
+    // hold in the kernel (Linux would otherwise grow it to 4 MiB each) and lets a stall show.
+    int socket_send_buffer = 256 * 1024;
     int64_t close_grace_ns = 1'000'000'000;        // a closing client may flush this long
     uint32_t max_catch_up = 5;            // ticks run at once after a stall; more are overruns
     double stats_interval_s = 5;          // period of the stats log line
+    std::optional<auth::token_secret> token_secret;  // set: only signed, unexpired tokens join
 };
 
 // Figures for the whole run, and for the current stats window.
@@ -55,8 +60,9 @@ public:
     // From sessions.
     std::variant<uint32_t, rejection> on_hello(session& s, const protocol::hello_msg& hello);
     std::optional<rejection> on_input(session& s, const protocol::input_msg& input);
-    // The session began to close: its player leaves the game now.
-    void on_closed(session& s, std::string_view reason);
+    // The session began to close: its player leaves the game now, or, when the connection was
+    // lost, waits for a reconnection.
+    void on_closed(session& s, std::string_view reason, bool connection_lost = false);
     // The session's socket is closed: it is forgotten.
     void on_gone(session& s);
     void count_in(size_t bytes);

@@ -34,6 +34,7 @@ session::session(asio::ip::tcp::socket socket, server& owner, uint64_t id)
 void session::start() {
     asio::error_code ec;
     socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+    socket_.set_option(asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
     auto self = shared_from_this();
     // Each coroutine's completion handler holds the session alive until the coroutine ends.
     asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
@@ -73,7 +74,7 @@ asio::awaitable<void> session::reader() {
             const bool mid_frame = reader_.buffered() > 0;
             const std::string why = eof ? (mid_frame ? "connection closed mid-frame" : "connection closed")
                                         : "socket error: " + e.code().message();
-            owner_.on_closed(*this, why);
+            owner_.on_closed(*this, why, true);
             close_now();
         }
     }
@@ -171,7 +172,7 @@ asio::awaitable<void> session::writer() {
             waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.now_ns();
         }
     } catch (const std::system_error& e) {
-        if (!closing_) owner_.on_closed(*this, "write failed: " + e.code().message());
+        if (!closing_) owner_.on_closed(*this, "write failed: " + e.code().message(), true);
         close_now();
     }
 }

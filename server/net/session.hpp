@@ -24,8 +24,8 @@ public:
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
     void reject(protocol::RejectCode code, std::string_view reason) override;
-    // Sends Bye(reason) and closes (server shutdown, a client's own Bye).
-    void say_bye(std::string_view reason);
+    // Sends Bye(reason) and closes (server shutdown, a takeover).
+    void say_bye(std::string_view reason) override;
 
     // Nanoseconds that output has waited without a byte written (0 when nothing waits).
     int64_t stalled_ns(int64_t now_ns) const;

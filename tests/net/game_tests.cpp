@@ -28,6 +28,8 @@ struct fake_client : participant {
         snapshot_ticks.push_back(snap.value.tick);
     }
     void reject(protocol::RejectCode code, std::string_view) override { rejected = code; }
+    std::string bye;
+    void say_bye(std::string_view reason) override { bye = reason; }
 };
 
 game_config make_config(uint32_t max_players = 64, uint32_t max_inputs_per_second = 0) {
@@ -109,8 +111,73 @@ TEST_CASE("a player who leaves loses its body at the next tick", "[net][game]") 
     const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
     g.tick();
     const size_t with_player = g.state().bodies().size();
-    g.leave(id, "test");
+    g.leave(id, c, "test");
     g.tick();
     CHECK(g.state().bodies().size() == with_player - 1);
+    CHECK(g.player_count() == 0);
+}
+
+TEST_CASE("a dropped player comes back to the same body within the grace period", "[net][game][reconnect]") {
+    game_config config = make_config();
+    config.reconnect_grace_s = 1;  // 60 ticks
+    game g(config, world::asteroids_preset());
+    fake_client first, second;
+    const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-1"));
+    g.tick();
+    const size_t bodies = g.state().bodies().size();
+    g.leave(id, first, "connection closed", true);
+    for (int k = 0; k < 30; ++k) g.tick();
+    CHECK(g.state().bodies().size() == bodies);  // the body waits
+    auto back = g.join(second, hello(), "key-1");
+    REQUIRE(std::holds_alternative<uint32_t>(back));
+    CHECK(std::get<uint32_t>(back) == id);
+    g.tick();
+    REQUIRE(second.frames.size() == 1);
+    auto welcome = protocol::decode_welcome(*protocol::verify_message(second.frames[0], protocol::server_frame_limits).value);
+    REQUIRE(welcome);
+    CHECK(welcome.value.player_id == id);
+    CHECK(g.state().find(welcome.value.entity_id)->owner == id);
+    CHECK(g.counters().reconnects == 1);
+}
+
+TEST_CASE("after the grace period a dropped player's body is removed", "[net][game][reconnect]") {
+    game_config config = make_config();
+    config.reconnect_grace_s = 0.5;  // 30 ticks
+    game g(config, world::asteroids_preset());
+    fake_client c, later;
+    const uint32_t id = std::get<uint32_t>(g.join(c, hello(), "key-2"));
+    g.tick();
+    const size_t bodies = g.state().bodies().size();
+    g.leave(id, c, "connection closed", true);
+    for (int k = 0; k < 32; ++k) g.tick();
+    CHECK(g.state().bodies().size() == bodies - 1);
+    CHECK(g.player_count() == 0);
+    // Coming back now is a new player.
+    auto again = g.join(later, hello(), "key-2");
+    REQUIRE(std::holds_alternative<uint32_t>(again));
+    CHECK(std::get<uint32_t>(again) != id);
+}
+
+TEST_CASE("a second connection with the same identity takes the player over", "[net][game][reconnect]") {
+    game g(make_config(), world::asteroids_preset());
+    fake_client first, second;
+    const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-3"));
+    g.tick();
+    REQUIRE(std::get<uint32_t>(g.join(second, hello(), "key-3")) == id);
+    CHECK(first.bye.find("another connection") != std::string::npos);
+    // The old connection's leave no longer touches the player.
+    g.leave(id, first, "closed", false);
+    CHECK(g.player_count() == 1);
+    CHECK(g.counters().takeovers == 1);
+}
+
+TEST_CASE("a player without an identity or who says bye leaves at once", "[net][game][reconnect]") {
+    game g(make_config(), world::asteroids_preset());
+    fake_client anonymous, named;
+    const uint32_t a = std::get<uint32_t>(g.join(anonymous, hello()));
+    const uint32_t b = std::get<uint32_t>(g.join(named, hello(), "key-4"));
+    g.tick();
+    g.leave(a, anonymous, "connection closed", true);
+    g.leave(b, named, "client said bye", false);
     CHECK(g.player_count() == 0);
 }

@@ -123,8 +123,9 @@ std::string server_process::log() {
     return log_;
 }
 
-test_client::test_client(uint16_t port) {
+test_client::test_client(uint16_t port, int receive_buffer) {
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (receive_buffer > 0) ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &receive_buffer, sizeof receive_buffer);
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_port = htons(port);

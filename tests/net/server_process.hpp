@@ -41,7 +41,8 @@ private:
 
 class test_client {
 public:
-    explicit test_client(uint16_t port);
+    // receive_buffer > 0 shrinks the socket's receive buffer (a client that fills up fast).
+    explicit test_client(uint16_t port, int receive_buffer = 0);
     ~test_client();
     test_client(const test_client&) = delete;
     test_client& operator=(const test_client&) = delete;

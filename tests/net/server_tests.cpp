@@ -22,7 +22,8 @@ namespace {
 struct joined_client {
     test_client client;
     protocol::welcome_info welcome;
-    explicit joined_client(uint16_t port, const std::string& name = "tester") : client(port) {
+    explicit joined_client(uint16_t port, const std::string& name = "tester", int receive_buffer = 0)
+        : client(port, receive_buffer) {
         client.send_frame(protocol::encode_hello(protocol::protocol_version, name, ""));
         auto frame = client.read_until(Payload::Welcome);
         REQUIRE(frame);
@@ -164,12 +165,13 @@ TEST_CASE("garbage, an oversize length and a NaN input close only that client", 
 }
 
 TEST_CASE("a client that never reads keeps the server's memory bounded and is dropped", "[net][e2e]") {
-    // 3000 rocks: each snapshot is about 96 KB, so an unread socket fills within a second.
+    // 1000 rocks: each snapshot is about 32 KB; with a 4 KiB receive buffer on the sleeper and
+    // a 64 KiB send buffer on the server, an unread socket fills within a second.
     const std::string config = temp_path("big.json");
-    std::ofstream(config) << R"({"preset": "asteroids", "size": [3000, 3000], "rocks": {"count": 3000}})";
-    server_process server({"--config", config, "--stall-timeout", "1"});
+    std::ofstream(config) << R"({"preset": "asteroids", "size": [2000, 2000], "rocks": {"count": 1000}})";
+    server_process server({"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536"});
     joined_client good(server.port(), "good");
-    joined_client sleeper(server.port(), "sleeper");  // never reads again
+    joined_client sleeper(server.port(), "sleeper", 4096);  // never reads again
     count_snapshots(good.client, 500ms);
     const long rss_before = server.rss_kib();
     CHECK(count_snapshots(good.client, 3000ms) >= 50);
@@ -204,4 +206,50 @@ TEST_CASE("a match with a duration ends cleanly", "[net][e2e]") {
     auto bye = c.client.read_until(Payload::Bye, 3000ms);
     REQUIRE(bye);
     CHECK(server.stop(0, 3000ms) == 0);
+}
+
+TEST_CASE("with --token-secret only signed, unexpired tokens join, under the signed name", "[net][e2e][auth]") {
+    const std::string secret = temp_path("secret");
+    std::ofstream(secret) << "0123456789abcdef0123456789abcdef-test-secret";
+    server_process server({"--token-secret", secret});
+    {
+        test_client c(server.port());
+        c.send_frame(protocol::encode_hello(protocol::protocol_version, "mallory", "not-a-token"));
+        CHECK(expect_reject(c).code == protocol::RejectCode::unauthorized);
+    }
+    // arena-token mints a token the server accepts.
+    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-token --secret " + secret + " --name alice --ttl 60";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe);
+    char buf[512] = {};
+    REQUIRE(std::fgets(buf, sizeof buf, pipe));
+    ::pclose(pipe);
+    std::string token(buf);
+    token.erase(token.find_last_not_of("\n") + 1);
+    test_client c(server.port());
+    c.send_frame(protocol::encode_hello(protocol::protocol_version, "claims-to-be-bob", token));
+    REQUIRE(c.read_until(Payload::Welcome));
+    CHECK(server.log().find("name=alice") != std::string::npos);
+    std::remove(secret.c_str());
+}
+
+TEST_CASE("a player whose connection drops reconnects to the same body with its token", "[net][e2e][reconnect]") {
+    server_process server({"--reconnect-grace", "5"});
+    protocol::welcome_info first;
+    {
+        test_client c(server.port());
+        c.send_frame(protocol::encode_hello(protocol::protocol_version, "wanderer", "my-session-key"));
+        auto frame = c.read_until(Payload::Welcome);
+        REQUIRE(frame);
+        first = protocol::decode_welcome(*message_of(*frame)).value;
+    }  // the socket closes without a Bye
+    std::this_thread::sleep_for(200ms);
+    test_client again(server.port());
+    again.send_frame(protocol::encode_hello(protocol::protocol_version, "wanderer", "my-session-key"));
+    auto frame = again.read_until(Payload::Welcome);
+    REQUIRE(frame);
+    const auto second = protocol::decode_welcome(*message_of(*frame)).value;
+    CHECK(second.player_id == first.player_id);
+    CHECK(second.entity_id == first.entity_id);
+    CHECK(count_snapshots(again, 500ms) >= 8);
 }

@@ -1,0 +1,97 @@
+#include "server/auth/join_token.hpp"
+
+#include <sodium.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+namespace arena::auth {
+
+namespace {
+
+constexpr size_t min_secret_bytes = 32;
+constexpr std::string_view version_tag = "v1";
+
+std::string to_base64url(std::string_view bytes) {
+    const int variant = sodium_base64_VARIANT_URLSAFE_NO_PADDING;
+    std::string out(sodium_base64_ENCODED_LEN(bytes.size(), variant), '\0');
+    sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), variant);
+    out.resize(std::char_traits<char>::length(out.c_str()));
+    return out;
+}
+
+std::optional<std::string> from_base64url(std::string_view text) {
+    std::string out(text.size(), '\0');
+    size_t length = 0;
+    if (sodium_base642bin(reinterpret_cast<unsigned char*>(out.data()), out.size(), text.data(), text.size(), nullptr,
+                          &length, nullptr, sodium_base64_VARIANT_URLSAFE_NO_PADDING) != 0)
+        return std::nullopt;
+    out.resize(length);
+    return out;
+}
+
+}  // namespace
+
+std::variant<token_secret, token_error> token_secret::from_bytes(std::string bytes) {
+    if (sodium_init() < 0) return token_error{"libsodium failed to initialise"};
+    if (bytes.size() < min_secret_bytes)
+        return token_error{"the secret has " + std::to_string(bytes.size()) + " bytes; at least " +
+                           std::to_string(min_secret_bytes) + " are needed"};
+    return token_secret(std::move(bytes));
+}
+
+std::variant<token_secret, token_error> token_secret::load(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return token_error{path + ": cannot open the token secret"};
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    auto secret = from_bytes(bytes.str());
+    if (auto* e = std::get_if<token_error>(&secret)) e->reason = path + ": " + e->reason;
+    return secret;
+}
+
+std::string token_secret::mac(std::string_view message) const {
+    unsigned char out[crypto_auth_hmacsha256_BYTES];
+    crypto_auth_hmacsha256_state state;
+    crypto_auth_hmacsha256_init(&state, reinterpret_cast<const unsigned char*>(key_.data()), key_.size());
+    crypto_auth_hmacsha256_update(&state, reinterpret_cast<const unsigned char*>(message.data()), message.size());
+    crypto_auth_hmacsha256_final(&state, out);
+    return std::string(reinterpret_cast<const char*>(out), sizeof out);
+}
+
+std::string token_secret::mint(std::string_view name, int64_t expires) const {
+    const std::string body = std::string(version_tag) + "." + to_base64url(name) + "." + std::to_string(expires);
+    return body + "." + to_base64url(mac(body));
+}
+
+std::variant<token_claims, token_error> token_secret::verify(std::string_view token, int64_t now) const {
+    const size_t last_dot = token.rfind('.');
+    if (last_dot == std::string_view::npos) return token_error{"malformed token"};
+    const std::string_view body = token.substr(0, last_dot);
+    const auto given_mac = from_base64url(token.substr(last_dot + 1));
+    const std::string expected = mac(body);
+    // Constant-time comparison: a mismatch position must not leak through timing.
+    if (!given_mac || given_mac->size() != expected.size() ||
+        sodium_memcmp(given_mac->data(), expected.data(), expected.size()) != 0)
+        return token_error{"token signature does not match this server's secret"};
+    // The signature is ours, so the body has the shape we wrote.
+    const size_t first = body.find('.'), second = body.find('.', first + 1);
+    if (body.substr(0, first) != version_tag || second == std::string_view::npos) return token_error{"malformed token"};
+    const auto name = from_base64url(body.substr(first + 1, second - first - 1));
+    if (!name) return token_error{"malformed token"};
+    token_claims claims{*name, 0};
+    try {
+        claims.expires = std::stoll(std::string(body.substr(second + 1)));
+    } catch (const std::exception&) {
+        return token_error{"malformed token"};
+    }
+    if (claims.expires <= now) return token_error{"token expired at " + std::to_string(claims.expires) + " (now " + std::to_string(now) + ")"};
+    return claims;
+}
+
+int64_t unix_now() {
+    return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace arena::auth

@@ -1,0 +1,44 @@
+#pragma once
+// Signed join tokens: "v1.<name>.<expires>.<mac>", where name is base64url, expires is a Unix
+// time in seconds, and mac is HMAC-SHA-256 (libsodium) of "v1.<name>.<expires>" keyed with
+// the server's secret file, base64url. The token names the player: a server with a secret
+// admits only Hellos whose token it signed and that have not expired, and knows who they are.
+// Tokens travel in clear over TCP (see SECURITY.md).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace arena::auth {
+
+struct token_claims {
+    std::string name;     // the player the token was minted for
+    int64_t expires = 0;  // Unix seconds
+};
+
+struct token_error {
+    std::string reason;
+};
+
+class token_secret {
+public:
+    // Reads the secret from a file: at least 32 bytes (e.g. `head -c 32 /dev/urandom > FILE`).
+    static std::variant<token_secret, token_error> load(const std::string& path);
+    // For tests and tools: a secret from bytes already in memory (at least 32 bytes).
+    static std::variant<token_secret, token_error> from_bytes(std::string bytes);
+
+    std::string mint(std::string_view name, int64_t expires) const;
+    // The claims of a valid, unexpired token, or why it is refused.
+    std::variant<token_claims, token_error> verify(std::string_view token, int64_t now) const;
+
+private:
+    explicit token_secret(std::string key) : key_(std::move(key)) {}
+    std::string mac(std::string_view message) const;
+    std::string key_;
+};
+
+// Seconds since the Unix epoch, for expiry checks (outside the world: a wall clock is fine).
+int64_t unix_now();
+
+}  // namespace arena::auth
