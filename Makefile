@@ -13,7 +13,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuff
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
   libclang-rt-14-dev libsodium-dev procps
 
-.PHONY: all deps build run test test-fast bench clean
+.PHONY: all deps build run test test-fast bench clean fuzz
 
 all: build
 
@@ -42,6 +42,31 @@ test: build
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600
+	./scripts/determinism-check.sh $(BUILD)
+	$(MAKE) fuzz
+
+# libFuzzer (clang++-14, with ASan and UBSan) on the frame reader and message handling, the
+# replay-file reader and the config loader, each for FUZZ_SECONDS from tests/fuzz/corpus/.
+# A crash stops the run; its input is saved under build-fuzz/crashes/.
+FUZZ_BUILD ?= build-fuzz
+FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay
+ifdef CI
+FUZZ_SECONDS ?= 60
+else
+FUZZ_SECONDS ?= 15
+endif
+fuzz: deps
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DARENA_FUZZ=ON -DARENA_SANITIZE=ON -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_BUILD)/corpus/$$t $(FUZZ_BUILD)/crashes; \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  $(FUZZ_BUILD)/bin/$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
+	    -artifact_prefix=$(FUZZ_BUILD)/crashes/$$t- $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t \
+	    2> $(FUZZ_BUILD)/$$t.log || { tail -40 $(FUZZ_BUILD)/$$t.log; exit 1; }; \
+	  grep -E "stat::number_of_executed_units|stat::new_units_added" $(FUZZ_BUILD)/$$t.log | tr '\n' ' '; echo; \
+	done
 
 # Release tests only: the quick loop while developing.
 test-fast: build
@@ -51,4 +76,4 @@ bench: build
 	./bench/run.sh $(BUILD)/bin
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) build-clang-*
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-*

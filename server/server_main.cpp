@@ -8,6 +8,7 @@
 #include "server/config/config_json.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
+#include "server/replay/recorder.hpp"
 #include "server/world/presets.hpp"
 
 using namespace arena;
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
     app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
         ->check(CLI::PositiveNumber);
+    uint32_t hash_interval = 60;
+    app.add_option("--hash-interval", hash_interval, "with --record: store the world hash every N ticks (default 60)")
+        ->check(CLI::Range(1u, 1000000u));
     std::string token_secret_path;
     app.add_option("--token-secret", token_secret_path,
                    "admit only Hellos with a token signed with this secret file (see arena-token)");
@@ -83,6 +87,32 @@ int main(int argc, char** argv) {
         signals.async_wait([&](const asio::error_code& ec, int signo) {
             if (!ec) server.shutdown(signo == SIGINT ? "server interrupted (SIGINT)" : "server terminated (SIGTERM)");
         });
+        // --record: every tick goes to the file as the session runs; finished at shutdown.
+        std::optional<replay::recorder> recorder;
+        bool recording_failed = false;
+        if (!record.empty()) {
+            const world::world& w = server.match().state();
+            auto opened = replay::recorder::open(
+                record, replay::make_header(w, options.game.preset, options.game.seed, options.game.tick_rate, hash_interval));
+            if (!opened) {
+                std::fprintf(stderr, "arena-server: --record: %s\n", opened.error.c_str());
+                return 2;
+            }
+            recorder.emplace(std::move(opened.value));
+            server.match().on_tick = [&](const replay::tick_record& r, uint64_t hash) {
+                if (auto s = recorder->record_tick(r, hash); !s && !recording_failed) {
+                    net::log_line("recording failed, the session goes on unrecorded: %s", s.error.c_str());
+                    recording_failed = true;
+                }
+            };
+            server.on_shutdown = [&] {
+                if (recording_failed) return;
+                if (auto s = recorder->finish(w.tick(), w.hash()); !s)
+                    net::log_line("recording failed at the end: %s", s.error.c_str());
+                else
+                    net::log_line("recorded %u ticks to %s", w.tick(), record.c_str());
+            };
+        }
         server.start();
         io.run();
         net::log_line("stopped after %u ticks", server.current_tick());

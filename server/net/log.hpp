@@ -11,4 +11,7 @@ __attribute__((format(printf, 1, 2)))
 #endif
 void log_line(const char* format, ...);
 
+// Turns log lines off (fuzz targets, which would otherwise print millions).
+void set_logging(bool enabled);
+
 }  // namespace arena::net

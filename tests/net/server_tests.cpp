@@ -1,5 +1,6 @@
 // arena-server end to end over loopback, with real sockets.
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -252,4 +253,33 @@ TEST_CASE("a player whose connection drops reconnects to the same body with its 
     CHECK(second.player_id == first.player_id);
     CHECK(second.entity_id == first.entity_id);
     CHECK(count_snapshots(again, 500ms) >= 8);
+}
+
+TEST_CASE("a recorded live session replays with every hash matching", "[net][e2e][replay]") {
+    const std::string recording = temp_path("session.arpl");
+    server_process server({"--record", recording, "--hash-interval", "10"});
+    {
+        joined_client a(server.port(), "a");
+        joined_client b(server.port(), "b");
+        for (uint32_t s = 1; s <= 90; ++s) {
+            a.client.send_frame(protocol::encode_input({s, 1.0f, 0.3f, static_cast<uint8_t>(s % 20 == 0)}));
+            b.client.send_frame(protocol::encode_input({s, -0.5f, -1.0f, 0}));
+            std::this_thread::sleep_for(16ms);
+        }
+        b.client.send_frame(protocol::encode_bye("leaving early"));
+        std::this_thread::sleep_for(200ms);
+    }
+    REQUIRE(server.stop(SIGTERM) == 0);
+    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-replay " + recording + " 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    REQUIRE(pipe);
+    std::string out;
+    char buf[4096];
+    while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+    const int status = ::pclose(pipe);
+    INFO(out);
+    CHECK(WEXITSTATUS(status) == 0);
+    CHECK(out.find("final_hash=") != std::string::npos);
+    CHECK(server.log().find("recorded ") != std::string::npos);
+    std::remove(recording.c_str());
 }

@@ -1,0 +1,61 @@
+#pragma once
+// Re-simulates a recorded session offline: rebuilds the world from the header (config JSON and
+// seed), applies every recorded tick with apply_tick (the server's own function) and compares
+// every recorded hash. Stops at the first mismatch, the first file problem, the End record or
+// the requested tick.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "protocol/result.hpp"
+#include "server/replay/reader.hpp"
+#include "server/world/world.hpp"
+
+namespace arena::replay {
+
+struct hash_mismatch {
+    uint32_t tick = 0;
+    uint64_t expected = 0;  // recorded
+    uint64_t actual = 0;    // replayed
+};
+
+struct replay_options {
+    // Stop when the world reaches this tick (after checking that tick's recorded hash, if any).
+    std::optional<uint32_t> until;
+    // Called with the start state's tick and hash, then after every step.
+    std::function<void(uint32_t tick, uint64_t hash)> on_tick;
+};
+
+struct replay_report {
+    uint32_t start_tick = 0;
+    uint32_t final_tick = 0;      // the world's tick where the replay stopped
+    uint64_t final_hash = 0;      // the world's hash there
+    uint32_t ticks_replayed = 0;
+    uint32_t hashes_checked = 0;  // the start hash, Hash records and the End record
+    bool complete = false;        // reached the End record, or `until`, with no problem
+    std::optional<hash_mismatch> mismatch;  // the first one
+    std::string error;            // a file problem ("<file>: byte offset N: ...") or a bad `until`
+};
+
+class replayer {
+public:
+    // Opens and checks the file's header, builds the world and, when the recording started
+    // after tick 0, advances it with empty ticks to the start tick (the start hash then tells
+    // whether the recorded server had done the same).
+    static protocol::result<std::unique_ptr<replayer>> open(const std::string& path);
+
+    replay_report run(const replay_options& options = {});
+
+    const header& file_header() const { return reader_.file_header(); }
+    const world::world& state() const { return world_; }
+
+private:
+    replayer(reader r, const world::world_config& config, uint64_t seed);
+
+    reader reader_;
+    world::world world_;
+};
+
+}  // namespace arena::replay

@@ -1,0 +1,65 @@
+// Fuzz target: bytes from a client, through everything the server does with them before the
+// world: framing (in uneven chunks), verification, decoding, and the game's handling of Hello
+// and Input (a fake participant stands in for the socket).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "protocol/decode.hpp"
+#include "protocol/framing.hpp"
+#include "protocol/verify.hpp"
+#include "server/net/game.hpp"
+#include "server/net/log.hpp"
+#include "server/world/presets.hpp"
+
+namespace {
+
+struct null_participant : arena::net::participant {
+    void send(arena::protocol::frame_bytes) override {}
+    void send_snapshot(const arena::protocol::snapshot_encoder&, uint32_t) override {}
+    void reject(arena::protocol::RejectCode, std::string_view) override {}
+    void say_bye(std::string_view) override {}
+};
+
+arena::world::world_config small_world() {
+    arena::world::world_config c = arena::world::asteroids_preset();
+    c.rocks.count = 4;
+    return c;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace arena;
+    static const world::world_config config = small_world();
+    net::set_logging(false);
+    net::game game({}, config);
+    null_participant client;
+    uint32_t player = 0;
+    protocol::frame_reader reader;
+    // The first byte picks the chunk size, so that prefixes and bodies get split anywhere.
+    const size_t chunk = size ? 1 + data[0] % 17 : 1;
+    size_t at = size ? 1 : 0;
+    while (at < size && !reader.failed()) {
+        const size_t n = std::min(chunk, size - at);
+        at += reader.feed(std::span<const uint8_t>(data + at, n));
+        if (!reader.has_frame()) continue;
+        auto message = protocol::verify_message(reader.frame(), protocol::client_frame_limits);
+        if (message) {
+            const protocol::Message& m = *message.value;
+            if (auto hello = protocol::decode_hello(m); hello && player == 0) {
+                auto joined = game.join(client, hello.value, hello.value.token);
+                if (auto* id = std::get_if<uint32_t>(&joined)) player = *id;
+            } else if (auto input = protocol::decode_input(m); input && player != 0) {
+                if (!game.receive_input(player, input.value)) game.tick();
+            }
+            (void)protocol::decode_ping(m);
+            (void)protocol::decode_bye(m);
+            (void)protocol::decode_snapshot(m);
+            (void)protocol::decode_welcome(m);
+        }
+        reader.next();
+    }
+    game.tick();
+    return 0;
+}

@@ -1,0 +1,54 @@
+// The golden recording: a scripted 600-tick asteroids session with five players (see
+// scripted_session.hpp), replayed with every hash matching. When the physics change on
+// purpose, regenerate it (server/replay/README.md) in the same commit and say why.
+#include <catch2/catch.hpp>
+
+#include <utility>
+#include <vector>
+
+#include "replay_files.hpp"
+#include "server/replay/replayer.hpp"
+
+using namespace arena::replay;
+
+namespace {
+
+constexpr uint64_t golden_final_hash = 0x597b9628eb1b9a11ULL;
+constexpr uint32_t golden_ticks = 600;
+
+std::vector<std::pair<uint32_t, uint64_t>> replay_hashes(const std::string& path, replay_report& report) {
+    auto opened = replayer::open(path);
+    REQUIRE(opened.ok());
+    std::vector<std::pair<uint32_t, uint64_t>> hashes;
+    replay_options options;
+    options.on_tick = [&](uint32_t tick, uint64_t hash) { hashes.emplace_back(tick, hash); };
+    report = opened.value->run(options);
+    return hashes;
+}
+
+}  // namespace
+
+TEST_CASE("the golden recording replays with every hash matching and the expected final hash", "[replay][golden]") {
+    auto opened = replayer::open(testing::golden_path());
+    REQUIRE(opened.ok());
+    CHECK(opened.value->file_header().preset == "asteroids");
+    const replay_report report = opened.value->run();
+    INFO(report.error);
+    CHECK(report.error.empty());
+    CHECK_FALSE(report.mismatch.has_value());
+    CHECK(report.complete);
+    CHECK(report.ticks_replayed == golden_ticks);
+    // The start hash, a Hash record every 60 ticks and the End record.
+    CHECK(report.hashes_checked == 1 + golden_ticks / 60 + 1);
+    CHECK(report.final_tick == golden_ticks);
+    CHECK(report.final_hash == golden_final_hash);
+}
+
+TEST_CASE("replaying the same recording twice gives identical hashes at every tick", "[replay][golden]") {
+    replay_report first_report, second_report;
+    const auto first = replay_hashes(testing::golden_path(), first_report);
+    const auto second = replay_hashes(testing::golden_path(), second_report);
+    REQUIRE(first.size() == golden_ticks + 1);
+    CHECK(first == second);
+    CHECK(first.back().second == golden_final_hash);
+}
