@@ -11,9 +11,9 @@ endif
 # Debian packages the build and the tests need (see ../shared/DEPS.md).
 PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
-  libclang-rt-14-dev libsodium-dev procps
+  libclang-rt-14-dev libsodium-dev procps prometheus
 
-.PHONY: all deps build run test test-fast bench clean fuzz
+.PHONY: all deps build run test test-fast bench clean fuzz lint-docker
 
 all: build
 
@@ -36,8 +36,8 @@ run: build
 	./scripts/run-demo.sh $(BUILD)/bin
 
 # Release tests, then the same tests under AddressSanitizer + UBSan, then the cross-compiler
-# determinism check.
-test: build
+# determinism check. The Dockerfile is linted first: no Docker engine runs here to build it.
+test: build lint-docker
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
@@ -71,6 +71,19 @@ fuzz: deps
 # Release tests only: the quick loop while developing.
 test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
+
+# The two Dockerfile linters from npm (see ../shared/DEPS.md), installed on first use into
+# .tools/, which ignores itself. Without npm (e.g. inside the image's own build stage, where
+# linting the Dockerfile proves nothing) it says so and skips.
+TOOLS ?= .tools
+DOCKER_LINTERS := dockerfile-utils@0.16.3 dockerfilelint@1.8.0
+lint-docker:
+	@if ! command -v npm >/dev/null 2>&1; then echo "lint-docker: npm not found (apt-get install npm): skipped"; exit 0; fi; \
+	mkdir -p $(TOOLS) && echo '*' > $(TOOLS)/.gitignore; \
+	if [ ! -x $(TOOLS)/node_modules/.bin/dockerfile-utils ] || [ ! -x $(TOOLS)/node_modules/.bin/dockerfilelint ]; then \
+	  npm install --prefix $(TOOLS) --no-audit --no-fund --silent $(DOCKER_LINTERS) || exit 1; \
+	fi; \
+	set -e; cd $(TOOLS) && npx --yes dockerfile-utils lint ../Dockerfile && npx --yes dockerfilelint ../Dockerfile
 
 bench: build
 	./bench/run.sh $(BUILD)/bin

@@ -2,12 +2,15 @@
 // server, signals.
 #include <asio.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <variant>
 
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
+#include "server/ops/ops_flags.hpp"
+#include "server/ops/ops_service.hpp"
 #include "server/replay/recorder.hpp"
 #include "server/world/presets.hpp"
 
@@ -40,6 +43,8 @@ int main(int argc, char** argv) {
     app.add_option("--socket-send-buffer", options.socket_send_buffer, "kernel send buffer per client, bytes (default 262144)")
         ->check(CLI::Range(4096, 64 << 20));
     app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
+    app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
+                   "connections that have not sent Hello yet (default 64)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
         ->check(CLI::PositiveNumber);
     uint32_t hash_interval = 60;
@@ -51,7 +56,18 @@ int main(int argc, char** argv) {
     app.add_option("--reconnect-grace", options.game.reconnect_grace_s,
                    "seconds a dropped player's body waits for it to come back with the same token (default 10)")
         ->check(CLI::NonNegativeNumber);
+    ops::ops_options ops_options;
+    ops::add_ops_flags(app, ops_options);  // --metrics-port, --agones, --agones-port, --agones-shutdown-timeout
+    double drain_grace_s = 1;
+    app.add_option("--drain-grace", drain_grace_s, "seconds clients get to read their Bye at shutdown (default 1)")
+        ->check(CLI::NonNegativeNumber);
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    if (auto error = ops::apply_agones_environment(ops_options, std::getenv("AGONES_SDK_HTTP_PORT")); !error.empty()) {
+        std::fprintf(stderr, "arena-server: %s\n", error.c_str());
+        return 2;
+    }
+    ops_options.bind = options.bind;
+    options.close_grace_ns = static_cast<int64_t>(drain_grace_s * 1e9);
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
         if (auto* e = std::get_if<auth::token_error>(&secret)) {
@@ -113,7 +129,14 @@ int main(int argc, char** argv) {
                     net::log_line("recorded %u ticks to %s", w.tick(), record.c_str());
             };
         }
+        ops::ops_service ops(
+            io, ops_options, [&] { return server.metrics_snapshot(); }, [&] { return server.ticking(); },
+            [](const std::string& line) { net::log_line("%s", line.c_str()); });
         server.start();
+        ops.start_after_listening();  // binds --metrics-port, then POST /ready to Agones
+        io.run();                     // until the server drained: Bye sent, recording and stats flushed
+        io.restart();                 // the match is over: tell Agones (bounded), then exit 0
+        ops.on_match_end([&io] { io.stop(); });
         io.run();
         net::log_line("stopped after %u ticks", server.current_tick());
     } catch (const std::exception& e) {

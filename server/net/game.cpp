@@ -184,6 +184,7 @@ void game::broadcast_snapshot() {
                                   b.angular_velocity);
     }
     snapshot_.build(world_.tick(), body_states_);
+    counters_.snapshot_bytes = snapshot_.frame().size();
     for (auto& [id, p] : players_) {
         if (p.body_id == 0 || !p.who) continue;
         p.who->send_snapshot(snapshot_, p.inputs.last_consumed_sequence());

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "protocol/version.hpp"
 #include "server/net/log.hpp"
 #include "server/net/session.hpp"
 
@@ -47,7 +48,7 @@ void server::start() {
     std::fflush(stdout);
     log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.game.tick_rate,
              options_.game.snapshot_rate, options_.game.max_players, game_.state().bodies().size());
-    started_ns_ = window_start_ns_ = last_watchdog_ns_ = now_ns();
+    started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
     asio::co_spawn(io_, accept_loop(), asio::detached);
     asio::co_spawn(io_, tick_loop(), asio::detached);
     if (options_.duration_s > 0) {
@@ -69,8 +70,13 @@ asio::awaitable<void> server::accept_loop() {
         }
         auto s = std::make_shared<session>(std::move(socket), *this, next_session_id_++);
         sessions_.emplace(s->id(), s);
+        connections_peak_ = std::max<uint64_t>(connections_peak_, sessions_.size());
         s->start();
-        if (sessions_.size() > options_.max_connections) s->reject(protocol::RejectCode::server_full, "too many connections");
+        // Limits are checked after start() so that the refused client reads why.
+        if (sessions_.size() > options_.max_connections)
+            s->reject(protocol::RejectCode::server_full, "too many connections");
+        else if (pending_handshakes() > options_.max_pending_handshakes)
+            s->reject(protocol::RejectCode::server_full, "too many connections waiting to say Hello");
     }
 }
 
@@ -94,8 +100,10 @@ void server::run_due_ticks() {
         const int64_t spent = now_ns() - begin;
         run_ticks_.add(spent);
         window_ticks_.add(spent);
+        tick_seconds_.observe(static_cast<double>(spent) / 1e9);
     }
     const int64_t now = now_ns();
+    if (due > 0) last_tick_ns_ = now;
     if (now - last_watchdog_ns_ >= 250'000'000) check_stalled_sessions(now);
     if (static_cast<double>(now - window_start_ns_) >= options_.stats_interval_s * 1e9) log_stats(now);
 }
@@ -119,6 +127,41 @@ void server::log_stats(int64_t now) {
     window_ticks_.clear();
     window_traffic_ = {};
     window_start_ns_ = now;
+}
+
+ops::server_metrics server::metrics_snapshot() const {
+    const game_counters c = game_.counters();
+    ops::server_metrics m;
+    m.tick_duration_s = tick_seconds_;
+    m.ticks = game_.state().tick();
+    m.tick_overruns = clock_.overruns();
+    m.tick_budget_s = 1.0 / options_.game.tick_rate;
+    m.players_connected = game_.player_count();
+    m.players_max = options_.game.max_players;
+    m.connections_open = sessions_.size();
+    m.joins = c.joins;
+    m.leaves = c.leaves;
+    // Every code from 0, so that rate() sees the first reject of a kind.
+    for (const char* const* n = protocol::EnumNamesRejectCode(); *n; ++n) m.rejects[*n] = 0;
+    for (const auto& [name, count] : rejects_) m.rejects[name] = count;
+    m.bytes_in = run_traffic_.bytes_in;
+    m.bytes_out = run_traffic_.bytes_out;
+    m.messages_in = run_traffic_.messages_in;
+    m.messages_out = run_traffic_.messages_out;
+    m.snapshots_sent = c.snapshots_sent;
+    m.snapshot_size_bytes = c.snapshot_bytes;
+    m.inputs_received = c.inputs_received;
+    m.input_underruns = c.input_underruns;
+    m.input_overflows = c.input_overflows;
+    m.draining = stopping_;
+    return m;
+}
+
+size_t server::pending_handshakes() const {
+    size_t pending = 0;
+    for (const auto& [id, s] : sessions_)
+        if (s->player_id() == 0 && !s->closing()) ++pending;
+    return pending;
 }
 
 std::variant<uint32_t, rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
@@ -228,6 +271,19 @@ void server::write_stats_json(const std::string& path) const {
         {"bytes_in", run_traffic_.bytes_in},
         {"bytes_out", run_traffic_.bytes_out},
         {"messages_out", run_traffic_.messages_out},
+        {"limits",
+         {{"max_players", options_.game.max_players},
+          {"max_connections", options_.max_connections},
+          {"max_pending_handshakes", options_.max_pending_handshakes},
+          {"max_inputs_per_second", options_.game.max_inputs_per_second ? options_.game.max_inputs_per_second
+                                                                         : 2u * options_.game.tick_rate + 10u},
+          {"input_buffer", options_.game.input_buffer},
+          {"max_frame_bytes", protocol::max_client_frame_body},
+          {"max_control_frames", options_.max_control_frames},
+          {"socket_send_buffer", options_.socket_send_buffer},
+          {"handshake_timeout_s", static_cast<double>(options_.handshake_timeout_ns) / 1e9},
+          {"stall_timeout_s", static_cast<double>(options_.stall_timeout_ns) / 1e9}}},
+        {"connections_peak", connections_peak_},
         {"bytes_in_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_in) / seconds : 0},
         {"bytes_out_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_out) / seconds : 0},
     };

@@ -13,6 +13,8 @@
 #include "server/net/duration_histogram.hpp"
 #include "server/net/game.hpp"
 #include "server/net/tick_clock.hpp"
+#include "server/ops/histogram.hpp"
+#include "server/ops/metrics.hpp"
 
 namespace arena::net {
 
@@ -25,6 +27,7 @@ struct server_options {
     double duration_s = 0;                // 0: run until a signal
     std::string stats_json;               // written at exit when set
     uint32_t max_connections = 0;         // 0: 2 × max_players + 16
+    uint32_t max_pending_handshakes = 64; // connections that have not sent Hello yet
     int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
     int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
     uint32_t max_control_frames = 64;     // queued control messages per client
@@ -66,6 +69,11 @@ public:
     // The session's socket is closed: it is forgotten.
     void on_gone(session& s);
     void count_in(size_t bytes);
+    void count_message_in() { ++run_traffic_.messages_in; }
+    // The figures /metrics shows.
+    ops::server_metrics metrics_snapshot() const;
+    // True while the tick loop ran a tick within `window_ns`: /healthz and the Agones pings.
+    bool ticking(int64_t window_ns = 1'000'000'000) const { return now_ns() - last_tick_ns_ < window_ns; }
     void count_out(size_t bytes);
     void count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason);
     uint32_t current_tick() const { return game_.state().tick(); }
@@ -84,6 +92,7 @@ private:
     void check_stalled_sessions(int64_t now);
     void log_stats(int64_t now);
     void finish();
+    size_t pending_handshakes() const;
 
     asio::io_context& io_;
     server_options options_;
@@ -105,6 +114,9 @@ private:
     int64_t last_watchdog_ns_ = 0;
     std::map<std::string, uint64_t> rejects_;  // by reason code name
     std::map<std::string, uint64_t> drops_;    // closes by reason, for the stats
+    uint64_t connections_peak_ = 0;
+    ops::histogram tick_seconds_;
+    int64_t last_tick_ns_ = 0;
 };
 
 }  // namespace arena::net

@@ -64,6 +64,7 @@ asio::awaitable<void> session::reader() {
                 reject(RejectCode::bad_request, "frame failed verification: " + verified.error);
                 co_return;
             }
+            owner_.count_message_in();
             const bool go_on = dispatch(*verified.value);
             reader_.next();
             if (!go_on) co_return;

@@ -19,21 +19,6 @@
 
 namespace arena::test {
 
-namespace {
-
-std::string read_available(int fd) {
-    std::string out;
-    char buf[4096];
-    while (true) {
-        const ssize_t n = ::read(fd, buf, sizeof buf);
-        if (n <= 0) break;
-        out.append(buf, static_cast<size_t>(n));
-    }
-    return out;
-}
-
-}  // namespace
-
 server_process::server_process(const std::vector<std::string>& args) {
     int out_pipe[2], err_pipe[2];
     if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
@@ -56,7 +41,15 @@ server_process::server_process(const std::vector<std::string>& args) {
     ::close(err_pipe[1]);
     stdout_fd_ = out_pipe[0];
     stderr_fd_ = err_pipe[0];
-    ::fcntl(stderr_fd_, F_SETFL, O_NONBLOCK);
+    log_drain_ = std::thread([this] {
+        char buf[4096];
+        while (true) {
+            const ssize_t n = ::read(stderr_fd_, buf, sizeof buf);
+            if (n <= 0) break;
+            std::lock_guard<std::mutex> lock(log_mutex_);
+            log_.append(buf, static_cast<size_t>(n));
+        }
+    });
     std::string line;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     while (std::chrono::steady_clock::now() < deadline) {
@@ -76,11 +69,13 @@ server_process::server_process(const std::vector<std::string>& args) {
         line.clear();
     }
     stop(SIGKILL);
+    log_drain_.join();
     throw std::runtime_error("arena-server did not print 'listening on': " + log());
 }
 
 server_process::~server_process() {
     if (pid_ > 0) stop(SIGKILL);
+    if (log_drain_.joinable()) log_drain_.join();  // ends at EOF: the server has exited
     if (stdout_fd_ >= 0) ::close(stdout_fd_);
     if (stderr_fd_ >= 0) ::close(stderr_fd_);
 }
@@ -91,7 +86,6 @@ int server_process::stop(int signal, std::chrono::milliseconds timeout) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     int status = 0;
     while (std::chrono::steady_clock::now() < deadline) {
-        log();  // keep the pipe drained so the server never blocks on its log
         if (::waitpid(pid_, &status, WNOHANG) == pid_) {
             pid_ = -1;
             return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -119,7 +113,7 @@ long server_process::rss_kib() const {
 }
 
 std::string server_process::log() {
-    log_ += read_available(stderr_fd_);
+    std::lock_guard<std::mutex> lock(log_mutex_);
     return log_;
 }
 

@@ -4,6 +4,8 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <mutex>
+#include <thread>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -37,6 +39,8 @@ private:
     int stderr_fd_ = -1;
     uint16_t port_ = 0;
     std::string log_;
+    std::mutex log_mutex_;
+    std::thread log_drain_;  // reads stderr all along: a full pipe would block the server
 };
 
 class test_client {

@@ -283,3 +283,27 @@ TEST_CASE("a recorded live session replays with every hash matching", "[net][e2e
     CHECK(server.log().find("recorded ") != std::string::npos);
     std::remove(recording.c_str());
 }
+
+TEST_CASE("a thousand connections opened at once are refused beyond the limits while players play on", "[net][e2e][limits]") {
+    const std::string stats = temp_path("flood-stats.json");
+    server_process server({"--max-pending-handshakes", "32", "--handshake-timeout", "1", "--stats-json", stats});
+    joined_client good(server.port(), "good");
+    const long rss_before = server.rss_kib();
+    std::vector<std::unique_ptr<test_client>> crowd;
+    for (int i = 0; i < 1000; ++i) crowd.push_back(std::make_unique<test_client>(server.port()));
+    CHECK(count_snapshots(good.client, 2000ms) >= 36);
+    // Every silent connection is gone: refused at once or timed out without a Hello.
+    int closed = 0;
+    for (auto& c : crowd) closed += c->closed_by_peer(10ms) ? 1 : 0;
+    CHECK(closed == 1000);
+    CHECK(server.rss_kib() - rss_before < 16384);
+    CHECK(count_snapshots(good.client, 1000ms) >= 18);
+    crowd.clear();
+    REQUIRE(server.stop(SIGTERM) == 0);
+    std::ifstream in(stats);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("\"max_pending_handshakes\": 32") != std::string::npos);
+    CHECK(text.find("\"server_full\"") != std::string::npos);
+    CHECK(text.find("\"timeout\"") != std::string::npos);
+    std::remove(stats.c_str());
+}

@@ -1,0 +1,53 @@
+#pragma once
+// The ops HTTP endpoint: GET /metrics and GET /healthz on their own port, one request per
+// connection. Small on purpose: it answers Prometheus, the kubelet, Docker's HEALTHCHECK and
+// an operator's curl, never players, so it bounds what a stray client can cost (request
+// size, read time, open connections) and nothing more.
+#include <asio.hpp>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "server/ops/http_message.hpp"
+
+namespace arena::ops {
+
+struct http_server_options {
+    std::string bind = "127.0.0.1";
+    uint16_t port = 0;                          // 0: any free port (see port())
+    size_t max_request_bytes = 8 * 1024;        // request line + headers; more gets 431
+    int64_t read_timeout_ns = 5'000'000'000;    // the whole head must arrive within this
+    uint32_t max_connections = 32;              // more are closed at once
+};
+
+class http_server {
+public:
+    http_server(asio::io_context& io, http_server_options options, http_handlers handlers);
+    ~http_server();
+
+    // Binds and listens (throws std::system_error when it cannot), then accepts in the
+    // background on the io_context.
+    void start();
+    // Stops accepting; connections being answered finish on their own. Idempotent.
+    void stop();
+    uint16_t port() const { return port_; }
+
+private:
+    asio::awaitable<void> accept_loop();
+    asio::awaitable<void> serve(asio::ip::tcp::socket socket);
+
+    asio::io_context& io_;
+    http_server_options options_;
+    http_handlers handlers_;
+    asio::ip::tcp::acceptor acceptor_;
+    uint16_t port_ = 0;
+    // Shared with the connection coroutines, so that one still running after the server is
+    // gone finds `alive` false instead of a dangling pointer.
+    struct shared_state {
+        bool alive = true;
+        uint32_t open = 0;
+    };
+    std::shared_ptr<shared_state> state_ = std::make_shared<shared_state>();
+};
+
+}  // namespace arena::ops

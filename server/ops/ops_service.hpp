@@ -1,0 +1,54 @@
+#pragma once
+// Everything an operator talks to, behind one object the server's main wires in: the
+// /metrics + /healthz endpoint and the Agones sidecar client. The server stays unaware of
+// both: it hands over a function that snapshots its figures and one that says whether its
+// tick loop advances.
+#include <asio.hpp>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "server/ops/agones.hpp"
+#include "server/ops/http_server.hpp"
+#include "server/ops/metrics.hpp"
+
+namespace arena::ops {
+
+struct ops_options {
+    std::string bind = "127.0.0.1";    // the game's --bind: one address for everything
+    std::optional<uint16_t> metrics_port;  // unset: no HTTP endpoint; 0: any free port
+    bool agones = false;               // talk to the Agones SDK sidecar
+    agones_options agones_sdk{};
+    bool agones_port_given = false;    // --agones-port: AGONES_SDK_HTTP_PORT does not override it
+};
+
+class ops_service {
+public:
+    ops_service(asio::io_context& io, ops_options options, std::function<server_metrics()> metrics,
+                std::function<bool()> healthy, log_fn log = {});
+
+    // Call once the game port listens: binds the metrics port (throws std::system_error when
+    // it cannot) and tells Agones the server is ready.
+    void start_after_listening();
+    // The match is over (end of --duration, SIGTERM, ...): tells Agones and calls `done` on
+    // the io thread once it accepted or gave up; without Agones, `done` is simply posted.
+    void on_match_end(std::function<void()> done);
+
+    // The /metrics body now, process figures included.
+    std::string metrics_text() const;
+    // The bound metrics port (0 when the endpoint is off).
+    uint16_t metrics_port() const { return http_ ? http_->port() : 0; }
+    const ops_options& options() const { return options_; }
+
+private:
+    asio::io_context& io_;
+    ops_options options_;
+    std::function<server_metrics()> metrics_;
+    std::function<bool()> healthy_;
+    log_fn log_;
+    std::unique_ptr<http_server> http_;
+    std::unique_ptr<agones_client> agones_;
+};
+
+}  // namespace arena::ops

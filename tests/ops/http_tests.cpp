@@ -1,0 +1,136 @@
+// The ops HTTP endpoint: routing as a pure function, then the real server over loopback.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+
+#include "server/ops/http_message.hpp"
+#include "server/ops/http_server.hpp"
+#include "server/ops/metrics.hpp"
+#include "tests/ops/loopback.hpp"
+
+using namespace arena::ops;
+using arena::test::http_exchange;
+using arena::test::http_get;
+using arena::test::io_thread;
+using arena::test::status_of;
+
+namespace {
+
+// A server on a free loopback port with a healthy flag the test flips.
+struct endpoint_fixture {
+    std::atomic<bool> healthy{true};
+    std::atomic<int> scrapes{0};
+    asio::io_context io;
+    http_server server;
+    io_thread runner;
+
+    explicit endpoint_fixture(http_server_options options = {})
+        : server(io, options,
+                 http_handlers{[this] {
+                                   ++scrapes;
+                                   return std::string("arena_ticks_total 7\n");
+                               },
+                               [this] { return healthy.load(); }}),
+          runner(io) {
+        runner.run_on_io([this] { server.start(); });
+    }
+};
+
+std::string body_of(const std::string& response) {
+    const size_t at = response.find("\r\n\r\n");
+    return at == std::string::npos ? "" : response.substr(at + 4);
+}
+
+}  // namespace
+
+TEST_CASE("ops http: request heads parse, and malformed ones give the status to answer", "[ops][http]") {
+    auto ok = parse_request_head("GET /metrics?x=1 HTTP/1.1\r\nHost: a\r\n\r\n");
+    REQUIRE(std::holds_alternative<http_request>(ok));
+    CHECK(std::get<http_request>(ok).method == "GET");
+    CHECK(std::get<http_request>(ok).path == "/metrics");
+    CHECK(std::get<http_error>(parse_request_head("GET /metrics\r\n\r\n")).status == 400);
+    CHECK(std::get<http_error>(parse_request_head("GET  /metrics HTTP/1.1\r\n\r\n")).status == 400);
+    CHECK(std::get<http_error>(parse_request_head("get /metrics HTTP/1.1\r\n\r\n")).status == 400);
+    CHECK(std::get<http_error>(parse_request_head("GET metrics HTTP/1.1\r\n\r\n")).status == 400);
+    CHECK(std::get<http_error>(parse_request_head("GET /metrics HTTP/2.0\r\n\r\n")).status == 505);
+    CHECK(std::get<http_error>(parse_request_head(std::string("GET /a\x01 HTTP/1.1\r\n\r\n"))).status == 400);
+}
+
+TEST_CASE("ops http: routing: /metrics, /healthz by the health function, 404 and 405", "[ops][http]") {
+    bool healthy = true;
+    const http_handlers h{[] { return std::string("m 1\n"); }, [&] { return healthy; }};
+    CHECK(route({"GET", "/metrics"}, h).status == 200);
+    CHECK(route({"GET", "/metrics"}, h).content_type == metrics_content_type);
+    CHECK(route({"GET", "/healthz"}, h).status == 200);
+    healthy = false;
+    CHECK(route({"GET", "/healthz"}, h).status == 503);
+    CHECK(route({"GET", "/"}, h).status == 404);
+    CHECK(route({"POST", "/metrics"}, h).status == 405);
+    CHECK(route({"GET", "/healthz"}, http_handlers{}).status == 503);
+}
+
+TEST_CASE("ops http: GET /metrics over HTTP returns the text format", "[ops][http]") {
+    endpoint_fixture f;
+    const std::string response = http_get(f.server.port(), "/metrics");
+    CHECK(status_of(response) == 200);
+    CHECK(response.find("Content-Type: text/plain; version=0.0.4") != std::string::npos);
+    CHECK(response.find("Connection: close") != std::string::npos);
+    CHECK(body_of(response) == "arena_ticks_total 7\n");
+    CHECK(f.scrapes == 1);
+}
+
+TEST_CASE("ops http: GET /healthz is 200 while healthy and 503 while the tick loop is stuck", "[ops][http]") {
+    endpoint_fixture f;
+    CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
+    CHECK(body_of(http_get(f.server.port(), "/healthz")) == "ok\n");
+    f.healthy = false;
+    CHECK(status_of(http_get(f.server.port(), "/healthz")) == 503);
+    f.healthy = true;
+    CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
+}
+
+TEST_CASE("ops http: unknown paths are 404, other methods 405, garbage 400", "[ops][http]") {
+    endpoint_fixture f;
+    CHECK(status_of(http_get(f.server.port(), "/")) == 404);
+    CHECK(status_of(http_get(f.server.port(), "/metrics/../etc/passwd")) == 404);
+    CHECK(status_of(http_exchange(f.server.port(), "POST /metrics HTTP/1.1\r\nContent-Length: 0\r\n\r\n")) == 405);
+    CHECK(status_of(http_exchange(f.server.port(), "hello\r\n\r\n")) == 400);
+    CHECK(f.scrapes == 0);
+}
+
+TEST_CASE("ops http: a request head over the limit gets 431 and the connection closes", "[ops][http]") {
+    http_server_options options;
+    options.max_request_bytes = 1024;
+    endpoint_fixture f(options);
+    const std::string big = "GET /metrics HTTP/1.1\r\nX-Filler: " + std::string(4000, 'a') + "\r\n\r\n";
+    CHECK(status_of(http_exchange(f.server.port(), big)) == 431);
+    // A head just under the limit is still served.
+    const std::string fits = "GET /metrics HTTP/1.1\r\nX-Filler: " + std::string(900, 'a') + "\r\n\r\n";
+    CHECK(status_of(http_exchange(f.server.port(), fits)) == 200);
+}
+
+TEST_CASE("ops http: a client that never finishes its request is cut off after the read timeout", "[ops][http]") {
+    http_server_options options;
+    options.read_timeout_ns = 200'000'000;
+    endpoint_fixture f(options);
+    const auto start = std::chrono::steady_clock::now();
+    const std::string response = http_exchange(f.server.port(), "GET /metrics HTTP/1.1\r\n", std::chrono::milliseconds(3000));
+    const auto waited = std::chrono::steady_clock::now() - start;
+    CHECK(response.empty());
+    CHECK(waited < std::chrono::milliseconds(1500));
+    // The server is still there for the next client.
+    CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
+}
+
+TEST_CASE("ops http: arena-healthcheck exits 0 on 200 and 1 on 503 or no server", "[ops][http]") {
+    endpoint_fixture f;
+    const std::string probe = std::string(ARENA_BIN_DIR) + "/arena-healthcheck http://127.0.0.1:" +
+                              std::to_string(f.server.port()) + "/healthz --timeout 2 >/dev/null";
+    CHECK(std::system(probe.c_str()) == 0);
+    f.healthy = false;
+    CHECK(WEXITSTATUS(std::system(probe.c_str())) == 1);
+    const std::string nobody = std::string(ARENA_BIN_DIR) + "/arena-healthcheck http://127.0.0.1:" +
+                               std::to_string(arena::test::free_port()) + "/healthz --timeout 1 >/dev/null";
+    CHECK(WEXITSTATUS(std::system(nobody.c_str())) == 1);
+}

@@ -1,0 +1,82 @@
+#pragma once
+// Test helpers for the ops endpoints, in plain POSIX so that the fakes cannot share a bug with
+// the Asio code under test: a raw HTTP exchange, a fake Agones sidecar that records calls, and
+// an io_context running on its own thread.
+#include <asio.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace arena::test {
+
+// Sends `request` to 127.0.0.1:port and returns everything the server wrote until it closed
+// (or the timeout). "" when the connection failed.
+std::string http_exchange(uint16_t port, const std::string& request,
+                          std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+std::string http_get(uint16_t port, const std::string& path);
+// The status code of a raw response, 0 when none.
+int status_of(const std::string& response);
+// A port nobody listens on right now (bound to 0, then released).
+uint16_t free_port();
+
+// A stand-in for the Agones SDK sidecar's REST server: answers every request with `status`
+// and records method, path, body and arrival time.
+class fake_sidecar {
+public:
+    struct call {
+        std::string method, path, body;
+        std::chrono::steady_clock::time_point at;
+    };
+    // Listens on `port` (0: any) after `start_delay` (to play a sidecar that starts late).
+    explicit fake_sidecar(uint16_t port = 0, std::chrono::milliseconds start_delay = std::chrono::milliseconds(0));
+    ~fake_sidecar();
+    fake_sidecar(const fake_sidecar&) = delete;
+    fake_sidecar& operator=(const fake_sidecar&) = delete;
+
+    uint16_t port() const { return port_; }
+    std::vector<call> calls() const;
+    size_t count(const std::string& path) const;
+    // Polls until `done(calls())` holds or the timeout passes.
+    bool wait_until(const std::function<bool(const std::vector<call>&)>& done, std::chrono::milliseconds timeout) const;
+    void set_status(int status) { status_ = status; }
+    std::chrono::steady_clock::time_point listening_since() const { return listening_since_.load(); }
+
+private:
+    void run(std::chrono::milliseconds start_delay);
+    void serve(int fd);
+
+    uint16_t port_ = 0;
+    int listen_fd_ = -1;
+    std::atomic<bool> stop_{false};
+    std::atomic<int> status_{200};
+    std::atomic<std::chrono::steady_clock::time_point> listening_since_{};
+    mutable std::mutex mutex_;
+    std::vector<call> calls_;
+    std::thread thread_;
+};
+
+// Runs an io_context on a thread until destroyed. Declare it after the objects that use the
+// io_context, so that it stops first.
+class io_thread {
+public:
+    explicit io_thread(asio::io_context& io) : io_(io), guard_(asio::make_work_guard(io)), thread_([this] { io_.run(); }) {}
+    ~io_thread() {
+        io_.stop();
+        thread_.join();
+    }
+    // Runs f on the io thread and waits for it: the objects under test are not thread-safe.
+    void run_on_io(std::function<void()> f);
+
+private:
+    asio::io_context& io_;
+    asio::executor_work_guard<asio::io_context::executor_type> guard_;
+    std::thread thread_;
+};
+
+}  // namespace arena::test
