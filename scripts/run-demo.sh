@@ -1,8 +1,35 @@
 #!/usr/bin/env bash
-# The main job of `make run`: the lecture's example through arena-sim, then a whole preset.
+# The main job of `make run`: arena-server with simulated players against it, showing their
+# live figures, then the server's own summary. Afterwards the lecture's example through
+# arena-sim. DEMO_BOTS and DEMO_SECONDS change the size and length.
 set -euo pipefail
 bin=${1:-build/bin}
-echo "== the lecture's example: 10 N on 1 kg, dt = 1 s, explicit Euler (expect x = 450 m) =="
+bots=${DEMO_BOTS:-50}
+seconds=${DEMO_SECONDS:-10}
+log=$(mktemp /tmp/arena-demo.XXXXXX)
+stats="$log.stats.json"
+recording="$log.arpl"
+trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording"' EXIT
+
+echo "== arena-server (asteroids) with $bots bots for $seconds s =="
+"$bin/arena-server" --port 0 --max-players "$bots" --duration $((seconds + 3)) --stats-json "$stats" \
+  --record "$recording" > "$log" 2> "$log.err" &
+server=$!
+port=""
+for _ in $(seq 100); do
+  port=$(sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$log")
+  [ -n "$port" ] && break
+  sleep 0.1
+done
+[ -n "$port" ] || { echo "arena-server did not start:"; cat "$log.err"; exit 1; }
+echo "listening on 127.0.0.1:$port"
+"$bin/arena-bots" --port "$port" --bots "$bots" --duration "$seconds" --behavior mixed --seed 1
+wait "$server"
+echo "== the server's log =="
+grep -E "stats|shutting down|recorded" "$log.err" || true
+rm -f "$log.err"
+echo "== replaying the recorded session =="
+"$bin/arena-replay" "$recording"
+
+echo "== the lecture's example: 10 N on 1 kg, dt = 1 s, explicit Euler (exact: 500 m) =="
 "$bin/arena-sim" --integrator explicit --dt 1 --steps 10 --mass 1 --force 10,0
-echo "== the asteroids preset, 1000 rocks, 600 steps =="
-"$bin/arena-sim" --preset asteroids --bodies 1000 --steps 600 --seed 1

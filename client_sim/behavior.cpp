@@ -1,0 +1,164 @@
+#include "client_sim/behavior.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/world/broadphase.hpp"
+#include "server/world/trig.hpp"
+
+namespace arena::bots {
+
+namespace {
+
+using world::player_input;
+using world::vec2;
+
+// One stream per (seed, index): splitmix64 of the seed, offset by the index times the golden
+// ratio constant, so that neighbouring bots and neighbouring seeds draw unrelated numbers.
+std::uint64_t stream_seed(std::uint64_t seed, std::uint32_t index) {
+    world::rng mix(seed);
+    return mix.next_u64() ^ (0x9e3779b97f4a7c15ULL * (std::uint64_t{index} + 1));
+}
+
+float clamp_unit(float v) { return std::clamp(v, -1.0f, 1.0f); }
+
+// One impulse in about this many ticks (1.5 s at 60 Hz) for the random walk.
+constexpr std::uint64_t impulse_one_in = 90;
+// A seek waypoint counts as reached within this distance, m.
+constexpr float waypoint_reached = 5.0f;
+
+}  // namespace
+
+std::optional<behavior_choice> parse_behavior(std::string_view name) {
+    if (name == "random") return behavior_choice::random;
+    if (name == "seek") return behavior_choice::seek;
+    if (name == "orbit") return behavior_choice::orbit;
+    if (name == "idle") return behavior_choice::idle;
+    if (name == "mixed") return behavior_choice::mixed;
+    return std::nullopt;
+}
+
+std::string_view to_string(behavior_kind kind) {
+    switch (kind) {
+        case behavior_kind::random: return "random";
+        case behavior_kind::seek: return "seek";
+        case behavior_kind::orbit: return "orbit";
+        case behavior_kind::idle: return "idle";
+    }
+    return "unknown";
+}
+
+behavior_kind resolve_behavior(behavior_choice choice, std::uint32_t index) {
+    switch (choice) {
+        case behavior_choice::random: return behavior_kind::random;
+        case behavior_choice::seek: return behavior_kind::seek;
+        case behavior_choice::orbit: return behavior_kind::orbit;
+        case behavior_choice::idle: return behavior_kind::idle;
+        case behavior_choice::mixed: break;
+    }
+    static constexpr behavior_kind cycle[] = {behavior_kind::random, behavior_kind::seek, behavior_kind::orbit,
+                                              behavior_kind::idle};
+    return cycle[index % 4];
+}
+
+behavior::behavior(behavior_kind kind, std::uint64_t seed, std::uint32_t index, const world::world_config& config)
+    : kind_(kind), config_(config), rng_(stream_seed(seed, index)) {
+    // Every kind draws its parameters here, in the same order, so that a bot's stream does
+    // not depend on which kind it was given.
+    const vec2 centre = random_point();
+    centre_ = centre;
+    radius_ = rng_.uniform(0.05f, 0.2f) * std::min(config_.size.x(), config_.size.y());
+    target_ = random_point();
+}
+
+vec2 behavior::random_point() {
+    // One draw per statement: argument evaluation order differs between compilers.
+    const float x = rng_.uniform(0.1f, 0.9f) * config_.size.x();
+    const float y = rng_.uniform(0.1f, 0.9f) * config_.size.y();
+    return {x, y};
+}
+
+player_input behavior::next(const observation& seen) {
+    switch (kind_) {
+        case behavior_kind::idle: return {};
+        case behavior_kind::random: return random_walk();
+        case behavior_kind::seek: return seen.own ? seek(*seen.own) : player_input{};
+        case behavior_kind::orbit: return seen.own ? orbit(*seen.own) : player_input{};
+    }
+    return {};
+}
+
+player_input behavior::random_walk() {
+    // Small steps keep the motion smooth enough to look like steering, not noise.
+    const float dthrust = rng_.uniform(-0.1f, 0.1f);
+    const float dturn = rng_.uniform(-0.2f, 0.2f);
+    thrust_ = std::clamp(thrust_ + dthrust, -0.2f, 1.0f);
+    turn_ = clamp_unit(turn_ + dturn);
+    const bool impulse = rng_.next_u64() % impulse_one_in == 0;
+    return {thrust_, turn_, impulse ? world::button_impulse : std::uint8_t{0}};
+}
+
+void behavior::observe(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {
+    if (kind_ != behavior_kind::seek) return;
+    if (target_id_ != 0) {
+        // Bodies come in increasing id order: a binary search, not a scan of every body.
+        const auto at = std::lower_bound(bodies.begin(), bodies.end(), target_id_,
+                                         [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
+        if (at != bodies.end() && at->id() == target_id_) {
+            target_ = vec2{at->x(), at->y()};
+            return;
+        }
+        target_id_ = 0;  // it left: pick another below, or head for the last place it was seen
+        target_is_waypoint_ = true;
+    }
+    if (bodies.size() < 2) return;
+    std::size_t pick = static_cast<std::size_t>(rng_.next_u64() % bodies.size());
+    if (bodies[pick].id() == own_id) pick = (pick + 1) % bodies.size();
+    target_id_ = bodies[pick].id();
+    target_ = vec2{bodies[pick].x(), bodies[pick].y()};
+    target_is_waypoint_ = false;
+}
+
+player_input behavior::seek(const world::body& own) {
+    vec2 to = world::displacement(own.position, *target_, config_);
+    if (target_is_waypoint_ && to.squaredNorm() < waypoint_reached * waypoint_reached) {
+        target_ = random_point();
+        to = world::displacement(own.position, *target_, config_);
+    }
+    if (to.squaredNorm() < 1e-6f) return {};
+    return steer(own, to);
+}
+
+player_input behavior::orbit(const world::body& own) {
+    const vec2 out = world::displacement(centre_, own.position, config_);
+    const float distance = std::sqrt(out.squaredNorm());
+    if (distance < 1e-3f) return steer(own, vec2{1, 0});  // at the centre: leave it in any direction
+    const vec2 radial = out / distance;
+    const vec2 tangent{-radial.y(), radial.x()};  // counter-clockwise
+    // Head along the circle, leaning inwards when outside it and outwards when inside.
+    const float drift = std::clamp((distance - radius_) / radius_, -1.0f, 1.0f);
+    return steer(own, tangent - drift * radial);
+}
+
+player_input behavior::steer(const world::body& own, const vec2& direction) {
+    const float length = std::sqrt(direction.squaredNorm());
+    const vec2 d = direction / length;
+    if (!config_.control.thrust_along_facing) {
+        // Runner (platformer): thrust pushes along +x; jump when the goal is above.
+        const float thrust = clamp_unit(2.0f * d.x());
+        const bool jump = d.y() > 0.5f && rng_.next_u64() % 30 == 0;
+        return {thrust, 0.0f, jump ? world::button_impulse : std::uint8_t{0}};
+    }
+    // Ship: turn by the sine of the heading error (cross product), damped by the spin so it
+    // does not oscillate; thrust when roughly facing the goal.
+    const world::cos_sin facing = world::compute_cos_sin(own.angle);
+    const float cross = facing.c * d.y() - facing.s * d.x();
+    const float dot = facing.c * d.x() + facing.s * d.y();
+    const float turn = clamp_unit(3.0f * (dot < 0 ? (cross < 0 ? -1.0f : 1.0f) : cross) - 0.5f * own.angular_velocity);
+    // Slow down near the top speed so that the bot can still turn into the goal.
+    const float speed = std::sqrt(own.velocity.squaredNorm());
+    const float thrust = dot > 0.7f ? (speed < 15.0f ? 1.0f : 0.3f) : 0.0f;
+    return {thrust, turn, 0};
+}
+
+}  // namespace arena::bots

@@ -1,0 +1,66 @@
+#pragma once
+// Everything the bots measure, in one place that the fleet owns. The io_context runs on one
+// thread, so plain counters suffice: no atomics, no locks.
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "client_sim/stats.hpp"
+
+namespace arena::bots {
+
+// Occurrences by reason, in a fixed (sorted) order for the report.
+using tally = std::map<std::string, std::uint64_t>;
+
+// How one bot's run ended.
+struct bot_outcome {
+    bool misbehaving = false;
+    bool joined = false;
+    bool ended = false;           // its connection is over
+    bool ended_early = false;     // ... before the run ended
+    bool protocol_error = false;  // the server sent something the protocol does not allow
+    bool server_goodbye = false;  // the server ended it with Bye or Reject shutting_down: orderly
+    std::string reason;           // why it ended; empty while it runs
+
+    // A well-behaved bot must join, keep its session until the run or the server ends it,
+    // and never see a protocol error. Misbehaving bots are expected to be dropped and never
+    // fail the run.
+    [[nodiscard]] bool failed() const {
+        if (misbehaving) return false;
+        return !joined || protocol_error || (ended_early && !server_goodbye);
+    }
+};
+
+struct fleet_metrics {
+    // Whole run, every bot.
+    std::uint64_t bytes_in = 0;
+    std::uint64_t bytes_out = 0;
+    std::uint64_t snapshots = 0;
+    std::uint64_t inputs_sent = 0;
+    std::uint64_t ticks_skipped = 0;  // shared ticker ticks dropped because the process lagged
+    std::uint64_t predictions_exact = 0;  // prediction errors exactly 0 (well-behaved bots)
+
+    // The current second, for the progress line; rolled over by the fleet's reporter.
+    std::uint64_t interval_bytes_in = 0;
+    std::uint64_t interval_bytes_out = 0;
+    std::uint64_t interval_snapshots = 0;
+    sample_set interval_rtt_ms;
+    sample_set interval_prediction_error_m;
+
+    // Whole run, well-behaved bots only (a misbehaving bot's figures measure its fault).
+    sample_set rtt_ms;                   // Ping → Pong, ms
+    sample_set snapshot_gap_ms;          // between two snapshots of one bot, ms
+    sample_set prediction_error_m;       // see prediction.hpp
+    sample_set input_lag_ticks;          // inputs sent but not yet consumed, at each snapshot
+    sample_set snapshots_per_s_per_bot;  // filled at the end, one value per bot
+
+    // One value per second of the run, the whole fleet.
+    sample_set snapshots_per_s;
+    sample_set bytes_in_per_s;
+    sample_set bytes_out_per_s;
+
+    tally rejects;      // every Reject received: "code: reason"
+    tally disconnects;  // every connection that ended before the run did, by reason
+};
+
+}  // namespace arena::bots

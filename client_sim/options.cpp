@@ -1,0 +1,50 @@
+#include "client_sim/options.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "server/cli_helpers.hpp"
+
+namespace arena::bots {
+
+int parse_options(int argc, char** argv, options& out) {
+    CLI::App app{"Simulated Arena players: N bots over N TCP connections, with client-side prediction",
+                 "arena-bots"};
+    std::string behavior_name = "mixed";
+    std::string misbehave_name = "none";
+    app.add_option("--host", out.host, "server address")->capture_default_str();
+    app.add_option("--port", out.port, "server TCP port")->check(CLI::Range(1, 65535))->capture_default_str();
+    app.add_option("--bots", out.bots, "number of bots (connections)")
+        ->check(CLI::Range(1u, 100000u))
+        ->capture_default_str();
+    app.add_option("--duration", out.duration, "seconds to run, then say Bye")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
+    app.add_option("--behavior", behavior_name, "random|seek|orbit|idle|mixed (mixed: by bot index)")
+        ->check(CLI::IsMember({"random", "seek", "orbit", "idle", "mixed"}))
+        ->capture_default_str();
+    app.add_option("--seed", out.seed, "seed of the behaviours (with the bot index)")->capture_default_str();
+    app.add_option("--connect-rate", out.connect_rate, "new connections per second (0: all at once)")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    app.add_option("--json", out.json, "also write the summary as JSON to this file");
+    app.add_option("--misbehave", misbehave_name,
+                   "fault for a share of the bots: garbage|oversize|nan|slow-reader|flood|abrupt-close")
+        ->check(CLI::IsMember({"none", "garbage", "oversize", "nan", "slow-reader", "flood", "abrupt-close"}));
+    app.add_option("--misbehave-share", out.misbehave_share, "share of the bots that misbehave, [0, 1]")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    app.add_option("--name-prefix", out.name_prefix, "bots are named PREFIX-INDEX")->capture_default_str();
+    app.add_option("--token", out.token, "Hello.token of every bot (a server with --token-secret wants one)");
+    app.add_option("--join-timeout", out.join_timeout, "seconds a bot waits for its Welcome")
+        ->check(CLI::Range(0.1, 3600.0))
+        ->capture_default_str();
+    app.add_flag("--quiet,-q", out.quiet, "no progress line each second");
+
+    if (const int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    // IsMember has checked both names.
+    out.behavior = *parse_behavior(behavior_name);
+    out.misbehave = *parse_misbehavior(misbehave_name);
+    return -1;
+}
+
+}  // namespace arena::bots

@@ -1,0 +1,32 @@
+#pragma once
+// arena-bots' command line.
+#include <cstdint>
+#include <string>
+
+#include "client_sim/behavior.hpp"
+#include "client_sim/misbehave.hpp"
+
+namespace arena::bots {
+
+struct options {
+    std::string host = "127.0.0.1";
+    std::uint16_t port = 7777;
+    std::uint32_t bots = 10;
+    double duration = 10;           // s, from the first connection attempt to the Byes
+    behavior_choice behavior = behavior_choice::mixed;
+    std::uint64_t seed = 1;
+    double connect_rate = 200;      // new connections per second; 0 = all at once
+    std::string json;               // summary as JSON to this file; empty = none
+    misbehavior misbehave = misbehavior::none;
+    double misbehave_share = 0.1;   // [0, 1], of the bots, when misbehave != none
+    std::string name_prefix = "bot";
+    std::string token;              // Hello.token, for a server run with --token-secret
+    bool quiet = false;             // no progress lines
+    double join_timeout = 10;       // s from launch to Welcome before a bot gives up
+};
+
+// Parses argv into `out`. Returns -1 when the program should go on, else its exit code
+// (0 after --help, 2 on a usage error, with the message already printed).
+int parse_options(int argc, char** argv, options& out);
+
+}  // namespace arena::bots

@@ -1,0 +1,137 @@
+#include "client_sim/report.hpp"
+
+#include <cstdio>
+
+namespace arena::bots {
+
+namespace {
+
+std::string format(const char* fmt, auto... args) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, fmt, args...);
+    return buffer;
+}
+
+nlohmann::json tally_json(const tally& t) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [reason, count] : t) j[reason] = count;
+    return j;
+}
+
+void append_tally(std::string& out, const char* title, const tally& t) {
+    if (t.empty()) return;
+    out += title;
+    out += ":\n";
+    for (const auto& [reason, count] : t) out += format("  %6llu  %s\n", static_cast<unsigned long long>(count), reason.c_str());
+}
+
+}  // namespace
+
+final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes, double seconds) {
+    final_report r;
+    r.seconds = seconds;
+    r.bots = static_cast<std::uint32_t>(outcomes.size());
+    for (const bot_outcome& o : outcomes) {
+        if (o.joined) ++r.joined;
+        if (o.misbehaving) {
+            ++r.misbehaving;
+            if (o.ended_early) {
+                ++r.misbehaving_dropped;
+                ++r.misbehaving_drops[o.reason];
+            }
+        } else if (o.ended_early) {
+            ++r.ended_early;
+        }
+        if (o.failed()) {
+            ++r.failed;
+            ++r.failures[o.reason.empty() ? "did not join before the run ended" : o.reason];
+        }
+    }
+    r.bytes_in = m.bytes_in;
+    r.bytes_out = m.bytes_out;
+    r.snapshots = m.snapshots;
+    r.inputs_sent = m.inputs_sent;
+    r.ticks_skipped = m.ticks_skipped;
+    if (!m.prediction_error_m.empty())
+        r.prediction_exact_share =
+            static_cast<double>(m.predictions_exact) / static_cast<double>(m.prediction_error_m.size());
+    r.figures = {
+        {"rtt_ms", m.rtt_ms.summarize()},
+        {"snapshot_gap_ms", m.snapshot_gap_ms.summarize()},
+        {"snapshots_per_s_per_bot", m.snapshots_per_s_per_bot.summarize()},
+        {"prediction_error_m", m.prediction_error_m.summarize()},
+        {"input_lag_ticks", m.input_lag_ticks.summarize()},
+        {"snapshots_per_s", m.snapshots_per_s.summarize()},
+        {"bytes_in_per_s", m.bytes_in_per_s.summarize()},
+        {"bytes_out_per_s", m.bytes_out_per_s.summarize()},
+    };
+    r.rejects = m.rejects;
+    r.disconnects = m.disconnects;
+    r.exit_code = r.failed == 0 ? 0 : 1;
+    return r;
+}
+
+std::string progress_line(double t, std::uint32_t playing, std::uint32_t bots, double interval_s,
+                          fleet_metrics& m) {
+    const double per_s = interval_s > 0 ? 1.0 / interval_s : 0.0;
+    const summary rtt = m.interval_rtt_ms.summarize();
+    const summary err = m.interval_prediction_error_m.summarize();
+    return format("t=%.0fs bots=%u/%u snapshots/s=%.0f rtt_ms_p50=%.2f rtt_ms_p99=%.2f pred_err_m_p99=%.4f "
+                  "bytes_in/s=%.0f bytes_out/s=%.0f",
+                  t, playing, bots, static_cast<double>(m.interval_snapshots) * per_s, rtt.p50, rtt.p99, err.p99,
+                  static_cast<double>(m.interval_bytes_in) * per_s, static_cast<double>(m.interval_bytes_out) * per_s);
+}
+
+std::string summary_table(const final_report& r) {
+    std::string out = format("arena-bots: %u bots, %u joined, %u failed, %u ended early, %u misbehaving (%u dropped), "
+                             "%.1f s\n",
+                             r.bots, r.joined, r.failed, r.ended_early, r.misbehaving, r.misbehaving_dropped, r.seconds);
+    out += format("%-26s %9s %12s %12s %12s %12s %12s\n", "figure", "count", "mean", "min", "p50", "p99", "max");
+    for (const auto& [name, s] : r.figures) {
+        out += format("%-26s %9zu %12.4f %12.4f %12.4f %12.4f %12.4f\n", name.c_str(), s.count, s.mean, s.min, s.p50,
+                      s.p99, s.max);
+    }
+    out += format("predictions exactly right: %.2f %%\n", 100.0 * r.prediction_exact_share);
+    out += format("totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu\n",
+                  static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
+                  static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
+                  static_cast<unsigned long long>(r.ticks_skipped));
+    append_tally(out, "rejects", r.rejects);
+    append_tally(out, "disconnects", r.disconnects);
+    append_tally(out, "misbehaving bots dropped", r.misbehaving_drops);
+    append_tally(out, "failures", r.failures);
+    out += format("exit code %d\n", r.exit_code);
+    return out;
+}
+
+nlohmann::json to_json(const final_report& r) {
+    nlohmann::json figures = nlohmann::json::object();
+    for (const auto& [name, s] : r.figures) {
+        figures[name] = {{"count", s.count}, {"mean", s.mean}, {"min", s.min},
+                         {"p50", s.p50},     {"p99", s.p99},   {"max", s.max}};
+    }
+    return {
+        {"seconds", r.seconds},
+        {"bots", r.bots},
+        {"joined", r.joined},
+        {"failed", r.failed},
+        {"ended_early", r.ended_early},
+        {"misbehaving", r.misbehaving},
+        {"misbehaving_dropped", r.misbehaving_dropped},
+        {"totals",
+         {{"bytes_in", r.bytes_in},
+          {"bytes_out", r.bytes_out},
+          {"snapshots", r.snapshots},
+          {"inputs", r.inputs_sent},
+          {"ticks_skipped", r.ticks_skipped}}},
+        {"figures", figures},
+        {"prediction_exact_share", r.prediction_exact_share},
+        {"rejects", tally_json(r.rejects)},
+        {"disconnects", tally_json(r.disconnects)},
+        {"misbehaving_drops", tally_json(r.misbehaving_drops)},
+        {"failures", tally_json(r.failures)},
+        {"exit_code", r.exit_code},
+    };
+}
+
+}  // namespace arena::bots

@@ -1,0 +1,50 @@
+#pragma once
+// What arena-bots prints: a progress line each second, and at the end a summary table (and
+// the same as JSON). Built from fleet_metrics and the bots' outcomes; no sockets here.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "client_sim/metrics.hpp"
+
+namespace arena::bots {
+
+struct final_report {
+    double seconds = 0;  // wall time of the run
+    std::uint32_t bots = 0;
+    std::uint32_t joined = 0;
+    std::uint32_t failed = 0;  // well-behaved bots that did not join, or lost their session
+    std::uint32_t ended_early = 0;  // well-behaved sessions that ended before the run (any reason)
+    std::uint32_t misbehaving = 0;
+    std::uint32_t misbehaving_dropped = 0;  // misbehaving bots whose session the server ended
+    std::uint64_t bytes_in = 0;
+    std::uint64_t bytes_out = 0;
+    std::uint64_t snapshots = 0;
+    std::uint64_t inputs_sent = 0;
+    std::uint64_t ticks_skipped = 0;
+    double prediction_exact_share = 0;  // [0, 1] of the measured predictions, bit-exact
+    std::vector<std::pair<std::string, summary>> figures;  // in table order
+    tally rejects;
+    tally disconnects;
+    tally failures;            // reason of each failed well-behaved bot
+    tally misbehaving_drops;   // reason each misbehaving bot's session ended
+    // 0: every well-behaved bot joined, kept its session and met no protocol error; else 1.
+    int exit_code = 0;
+};
+
+// Summarises (and so sorts) the metrics' sample sets.
+final_report make_report(fleet_metrics& metrics, std::span<const bot_outcome> outcomes, double seconds);
+
+// "t=3s bots=100/100 snapshots/s=2000 rtt_ms_p50=0.31 ..." for the second just ended;
+// summarises the interval sample sets (the caller clears them afterwards).
+std::string progress_line(double t, std::uint32_t playing, std::uint32_t bots, double interval_s,
+                          fleet_metrics& metrics);
+
+std::string summary_table(const final_report& report);
+nlohmann::json to_json(const final_report& report);
+
+}  // namespace arena::bots
