@@ -96,3 +96,21 @@ std::string read_file(const std::string& path) {
 }
 
 }  // namespace arena::test
+
+namespace arena::test {
+
+long child_process::rss_kib() const {
+    std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmRSS:") {
+            long kib = -1;
+            status >> kib;
+            return kib;
+        }
+        status.ignore(1 << 12, '\n');
+    }
+    return -1;
+}
+
+}  // namespace arena::test

@@ -38,6 +38,9 @@ public:
     std::optional<int> wait_for(std::chrono::milliseconds timeout);
     void signal(int signo);
     [[nodiscard]] bool running() const { return !exit_code_.has_value(); }
+    [[nodiscard]] pid_t pid() const { return pid_; }
+    // Resident set size in KiB from /proc (-1 once it has exited).
+    [[nodiscard]] long rss_kib() const;
     // Everything it printed so far.
     [[nodiscard]] std::string output() const;
 
