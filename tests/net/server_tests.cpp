@@ -1,6 +1,5 @@
 // arena-server end to end over loopback, with real sockets.
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -11,6 +10,7 @@
 
 #include "protocol/decode.hpp"
 #include "protocol/version.hpp"
+#include "common/run_command.hpp"
 #include "server_process.hpp"
 
 using namespace arena;
@@ -219,13 +219,9 @@ TEST_CASE("with --token-secret only signed, unexpired tokens join, under the sig
         CHECK(expect_reject(c).code == protocol::RejectCode::unauthorized);
     }
     // arena-token mints a token the server accepts.
-    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-token --secret " + secret + " --name alice --ttl 60";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe);
-    char buf[512] = {};
-    REQUIRE(std::fgets(buf, sizeof buf, pipe));
-    ::pclose(pipe);
-    std::string token(buf);
+    const auto minted = run_command(program("arena-token") + " --secret " + secret + " --name alice --ttl 60");
+    REQUIRE(minted.exit_code == 0);
+    std::string token = minted.output;
     token.erase(token.find_last_not_of("\n") + 1);
     test_client c(server.port());
     c.send_frame(protocol::encode_hello(protocol::protocol_version, "claims-to-be-bob", token));
@@ -270,16 +266,10 @@ TEST_CASE("a recorded live session replays with every hash matching", "[net][e2e
         std::this_thread::sleep_for(200ms);
     }
     REQUIRE(server.stop(SIGTERM) == 0);
-    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-replay " + recording + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-    const int status = ::pclose(pipe);
-    INFO(out);
-    CHECK(WEXITSTATUS(status) == 0);
-    CHECK(out.find("final_hash=") != std::string::npos);
+    const auto replayed = run_command(program("arena-replay") + " " + recording + " 2>&1");
+    INFO(replayed.output);
+    CHECK(replayed.exit_code == 0);
+    CHECK(replayed.output.find("final_hash=") != std::string::npos);
     CHECK(server.log().find("recorded ") != std::string::npos);
     std::remove(recording.c_str());
 }

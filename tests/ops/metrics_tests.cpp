@@ -1,6 +1,8 @@
 // The /metrics body: Prometheus text format, naming conventions, and promtool's verdict.
 #include <catch2/catch.hpp>
 
+#include "common/run_command.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -221,15 +223,9 @@ TEST_CASE("ops metrics: promtool check metrics accepts the output", "[ops][metri
         std::ofstream out(path);
         out << render_metrics(sample_metrics());
     }
-    const std::string command = std::string("promtool check metrics < ") + path + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe);
-    std::string report;
-    char buffer[512];
-    while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) report.append(buffer, n);
-    const int status = pclose(pipe);
+    const auto checked = arena::test::run_command(std::string("promtool check metrics < ") + path + " 2>&1");
     std::remove(path);
-    INFO(report);
-    CHECK(status == 0);
-    CHECK(report.empty());
+    INFO(checked.output);
+    CHECK(checked.exit_code == 0);
+    CHECK(checked.output.empty());
 }

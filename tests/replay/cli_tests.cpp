@@ -1,6 +1,8 @@
 // The built arena-replay, run as a user runs it: exit codes and output lines.
 #include <catch2/catch.hpp>
 
+#include "common/run_command.hpp"
+
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -24,16 +26,8 @@ enum class streams { out, err, both };
 // Runs arena-replay with `args` (already shell-quoted where needed).
 run_result run_replay(const std::string& args, streams which = streams::out) {
     const char* redirect = which == streams::out ? " 2>/dev/null" : which == streams::err ? " 2>&1 >/dev/null" : " 2>&1";
-    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-replay " + args + redirect;
-    run_result r;
-    std::FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char chunk[4096];
-    size_t n = 0;
-    while ((n = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) r.out.append(chunk, n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    const auto done = arena::test::run_command(arena::test::program("arena-replay") + " " + args + redirect);
+    return {done.exit_code, done.output};
 }
 
 std::vector<std::string> lines_of(const std::string& text) {

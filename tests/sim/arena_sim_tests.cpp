@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
+#include "common/run_command.hpp"
 #include "server/sim/single_body.hpp"
 
 namespace {
@@ -16,14 +16,8 @@ struct run_result {
 };
 
 run_result run(const std::string& args) {
-    const std::string command = std::string(ARENA_BIN_DIR) + "/arena-sim " + args + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-    const int status = ::pclose(pipe);
-    return {WEXITSTATUS(status), out};
+    const auto r = arena::test::run_command(arena::test::program("arena-sim") + " " + args + " 2>&1");
+    return {r.exit_code, r.output};
 }
 
 std::string last_line(const std::string& text) {
