@@ -74,7 +74,7 @@ asio::awaitable<void> bot::run() {
         socket_.set_option(asio::ip::tcp::no_delay(true), ec);
         phase_ = phase::joining;
         const std::string name = fleet_.opts().name_prefix + "-" + std::to_string(index_);
-        queue(protocol::encode_hello(protocol::protocol_version, name, fleet_.opts().token));
+        queue(protocol::encode_hello(protocol::protocol_version, name, token_for(fleet_.opts(), name)));
         asio::co_spawn(socket_.get_executor(), writer(), asio::detached);
         co_await reader();
     } catch (const std::exception& e) {

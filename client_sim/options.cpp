@@ -1,5 +1,8 @@
 #include "client_sim/options.hpp"
 
+#include <cstdio>
+#include <variant>
+
 #include <CLI/CLI.hpp>
 
 #include "server/cli_helpers.hpp"
@@ -35,16 +38,33 @@ int parse_options(int argc, char** argv, options& out) {
         ->capture_default_str();
     app.add_option("--name-prefix", out.name_prefix, "bots are named PREFIX-INDEX")->capture_default_str();
     app.add_option("--token", out.token, "Hello.token of every bot (a server with --token-secret wants one)");
+    std::string token_secret_path;
+    app.add_option("--token-secret", token_secret_path,
+                   "mint each bot a signed token naming it from this secret file (as arena-token does)");
     app.add_option("--join-timeout", out.join_timeout, "seconds a bot waits for its Welcome")
         ->check(CLI::Range(0.1, 3600.0))
         ->capture_default_str();
     app.add_flag("--quiet,-q", out.quiet, "no progress line each second");
 
     if (const int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    if (!token_secret_path.empty()) {
+        auto secret = auth::token_secret::load(token_secret_path);
+        if (auto* e = std::get_if<auth::token_error>(&secret)) {
+            std::fprintf(stderr, "arena-bots: --token-secret: %s\n", e->reason.c_str());
+            return 2;
+        }
+        out.token_secret = std::get<auth::token_secret>(std::move(secret));
+    }
     // IsMember has checked both names.
     out.behavior = *parse_behavior(behavior_name);
     out.misbehave = *parse_misbehavior(misbehave_name);
     return -1;
+}
+
+std::string token_for(const options& opts, const std::string& name) {
+    // An hour is far longer than any load test, and short enough to be harmless if seen.
+    if (opts.token_secret) return opts.token_secret->mint(name, auth::unix_now() + 3600);
+    return opts.token;
 }
 
 }  // namespace arena::bots

@@ -1,10 +1,12 @@
 #pragma once
 // arena-bots' command line.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "client_sim/behavior.hpp"
 #include "client_sim/misbehave.hpp"
+#include "server/auth/join_token.hpp"
 
 namespace arena::bots {
 
@@ -20,7 +22,10 @@ struct options {
     misbehavior misbehave = misbehavior::none;
     double misbehave_share = 0.1;   // [0, 1], of the bots, when misbehave != none
     std::string name_prefix = "bot";
-    std::string token;              // Hello.token, for a server run with --token-secret
+    std::string token;              // Hello.token of every bot (an open server's reconnection key)
+    // --token-secret FILE: each bot mints its own signed token naming it (load tests of a
+    // server that runs with the same secret).
+    std::optional<auth::token_secret> token_secret;
     bool quiet = false;             // no progress lines
     double join_timeout = 10;       // s from launch to Welcome before a bot gives up
 };
@@ -28,5 +33,8 @@ struct options {
 // Parses argv into `out`. Returns -1 when the program should go on, else its exit code
 // (0 after --help, 2 on a usage error, with the message already printed).
 int parse_options(int argc, char** argv, options& out);
+
+// The token bot `name` says Hello with: minted from the secret when there is one.
+std::string token_for(const options& opts, const std::string& name);
 
 }  // namespace arena::bots

@@ -266,3 +266,17 @@ TEST_CASE("arena-bots exits with 2 on a usage error", "[bots][cli]") {
         CHECK(*code == 2);
     }
 }
+
+TEST_CASE("bots mint their own tokens from the server's secret file", "[e2e][auth]") {
+    temp_dir dir;
+    const std::string secret = dir.file("secret");
+    std::ofstream(secret) << "a secret of at least thirty-two bytes for the test";
+    server s(dir, {"--token-secret", secret});
+    const bots_run signed_bots =
+        run_bots(dir, s.port, {"--bots", "8", "--duration", "2", "--token-secret", secret, "--quiet"});
+    CHECK(signed_bots.exit_code == 0);
+    CHECK(signed_bots.report.at("joined") == 8);
+    const bots_run unsigned_bots = run_bots(dir, s.port, {"--bots", "2", "--duration", "2", "--quiet"});
+    CHECK(unsigned_bots.exit_code == 1);
+    CHECK(unsigned_bots.report.at("joined") == 0);
+}
