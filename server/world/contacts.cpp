@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/world/integrate.hpp"
+
 namespace arena::world {
 
 namespace {
@@ -59,8 +61,13 @@ void prepare(std::span<const body> bodies, contact& c, const world_config& confi
 
 void detect_contacts(std::span<const body> bodies, const world_config& config, broadphase_scratch& scratch,
                      std::vector<contact>& out) {
+    detect_contacts(bodies, make_grid(bodies, config), config, scratch, out);
+}
+
+void detect_contacts(std::span<const body> bodies, const grid& g, const world_config& config,
+                     broadphase_scratch& scratch, std::vector<contact>& out) {
     out.clear();
-    find_candidate_pairs(bodies, config, scratch);
+    find_candidate_pairs(bodies, g, scratch);
     for (const auto& [ia, ib] : scratch.pairs) {
         const body& a = bodies[ia];
         const body& b = bodies[ib];
@@ -136,16 +143,7 @@ void correct_penetration(std::span<body> bodies, std::span<const contact> contac
 
 void wrap_positions(std::span<body> bodies, const world_config& config) {
     if (config.boundary != boundary::wrap) return;
-    const vec2 size = config.size;
-    for (body& b : bodies) {
-        for (int k = 0; k < 2; ++k) {
-            real& x = b.position[k];
-            if (x < 0 || x >= size[k]) {
-                x -= std::floor(x / size[k]) * size[k];
-                if (x >= size[k]) x = 0;  // a tiny negative rounds up to size: that is 0
-            }
-        }
-    }
+    for (body& b : bodies) wrap_position(b, config);
 }
 
 }  // namespace arena::world

@@ -30,6 +30,9 @@ struct contact {
 // in broadphase order.
 void detect_contacts(std::span<const body> bodies, const world_config& config, broadphase_scratch& scratch,
                      std::vector<contact>& out);
+// The same, on a grid the caller made (make_grid) from an extent it gathered on the way.
+void detect_contacts(std::span<const body> bodies, const grid& g, const world_config& config,
+                     broadphase_scratch& scratch, std::vector<contact>& out);
 
 // Sequential impulses: each contact's relative normal velocity driven to its bounce target.
 void solve_contact_velocities(std::span<body> bodies, std::span<contact> contacts, const world_config& config);

@@ -2,18 +2,6 @@
 
 namespace arena::world {
 
-real wrap_angle(real angle) {
-    const real two_pi = 2.0f * pi;
-    if (angle > pi || angle <= -pi) {
-        // Division and truncation are exact operations: no libm fmod.
-        real turns = static_cast<real>(static_cast<long long>(angle / two_pi));
-        angle -= turns * two_pi;
-        if (angle > pi) angle -= two_pi;
-        if (angle <= -pi) angle += two_pi;
-    }
-    return angle;
-}
-
 namespace {
 
 // Taylor polynomials on [−π/4, π/4], evaluated in double (exact ×,+ under IEEE, no FMA since

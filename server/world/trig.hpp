@@ -15,7 +15,17 @@ struct cos_sin {
 // Cosine and sine of `angle` (radians, any finite value). Max error about 1e-7 over [−π, π].
 cos_sin compute_cos_sin(real angle);
 
-// `angle` wrapped into (−π, π].
-real wrap_angle(real angle);
+// `angle` wrapped into (−π, π]. Inline: every body's angle goes through it every step.
+inline real wrap_angle(real angle) {
+    const real two_pi = 2.0f * pi;
+    if (angle > pi || angle <= -pi) {
+        // Division and truncation are exact operations: no libm fmod.
+        real turns = static_cast<real>(static_cast<long long>(angle / two_pi));
+        angle -= turns * two_pi;
+        if (angle > pi) angle -= two_pi;
+        if (angle <= -pi) angle += two_pi;
+    }
+    return angle;
+}
 
 }  // namespace arena::world

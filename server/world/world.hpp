@@ -51,9 +51,10 @@ public:
 
 private:
     void apply_inputs(const tick_inputs& inputs);
-    void accumulate_forces();
-    void detect_collisions();
-    void clear_accumulators();
+    body_extent integrate_velocities();  // forces, velocities (and explicit Euler's positions)
+    void detect_collisions(const body_extent& extent);
+    void integrate_positions();          // positions, clearing, wrapping of bodies in no contact
+    void wrap_touched_bodies();          // wrapping of the bodies in contacts
     void spawn_rocks();
     // A spot in [r, size − r]² that overlaps nobody `is_free` knows of (a few tries; a crowded
     // world takes the last try).
@@ -67,6 +68,7 @@ private:
     uint32_t tick_ = 0;
     std::vector<contact> contacts_;
     broadphase_scratch scratch_;
+    std::vector<uint8_t> touched_;  // body index → in a contact this step (wrap worlds only)
     impulse_cache impulses_;
 };
 

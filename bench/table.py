@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""JSON lines from arena-bench and from ../shared/peers/box2d/run_all.py -> one markdown table.
+
+  bench/table.py ARENA.jsonl [BOX2D.jsonl] [--note TEXT]...
+
+Box2D-scene rows are paired by N and repetition (run_all.py interleaves the engines), so the
+speed ratio is the median of ratios taken from runs seconds apart; times are the best of R.
+"""
+import json
+import statistics
+import sys
+
+BOX2D_V3_MS = {1000: 0.314, 10000: 5.61, 100000: 133.4}      # ../shared/peers/box2d/README.md, 2026-11-21
+BOX2D_24_OVERLAPS = {1000: 66, 10000: 725, 100000: 4266}
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            return [json.loads(line) for line in f if line.strip().startswith("{")]
+    except FileNotFoundError:
+        return []
+
+
+def ok(flag):
+    return "**met**" if flag else "**not met**"
+
+
+def main(argv):
+    notes, paths = [], []
+    i = 0
+    while i < len(argv):
+        if argv[i] == "--note":
+            notes.append(argv[i + 1])
+            i += 2
+        else:
+            paths.append(argv[i])
+            i += 1
+    rows = load(paths[0]) if paths else []
+    peer = load(paths[1]) if len(paths) > 1 else []
+    out = []
+    add = out.append
+    add("| # | benchmark | N | median | p90 | per unit | target |")
+    add("|---|---|---:|---:|---:|---|---|")
+    for r in rows:
+        b = r["bench"]
+        if b == "world_step":
+            n = r["n"]
+            target = ""
+            if n == 10000:
+                target = "≤ 1 ms: " + ok(r["ms_per_step_median"] <= 1.0)
+            elif n == 100000:
+                target = "≤ 16.6 ms: " + ok(r["ms_per_step_median"] <= 16.6)
+            add("| 1 | world step, asteroids, collisions (%d steps, %.0f m side, %d contacts) | %d | %.3f ms | %.3f ms | %.0f ns/body | %s |" % (
+                r["steps"], r["world_side_m"], r["contacts_last_step"], n, r["ms_per_step_median"], r["ms_per_step_p90"],
+                r["ns_per_body"], target))
+        elif b == "integrate":
+            add("| 2 | integration alone: forces + semi-implicit Euler (%d B/body, %.0f MB) | %d | %.2f ms | %.2f ms | %.1f ns/body, %.2f GB/s | |" % (
+                r["body_bytes"], r["bytes"] / 1e6, r["n"], r["integrate_ms_median"], r["integrate_ms_p90"],
+                r["ns_per_body"], r["integrate_gb_per_s"]))
+            add("| 2 | streaming copy (memcpy) of the same bytes, same run | %d | %.2f ms | %.2f ms | %.2f GB/s | integration/copy = **%.2f×**; ≤ 2×: %s |" % (
+                r["n"], r["copy_ms_median"], r["copy_ms_p90"], r["copy_gb_per_s"], r["ratio"], ok(r["ratio"] <= 2.0)))
+        elif b == "snapshot":
+            add("| 3 | snapshot build (world → BodyState + snapshot_encoder::build) | %d | %.4f ms | %.4f ms | %.3g bodies/s, %.2f B/body on the wire (%d B frame) | |" % (
+                r["n"], r["build_ms_median"], r["build_ms_p90"], r["bodies_per_s"], r["bytes_per_body"], r["frame_bytes"]))
+            add("| 3 | snapshot copy_with_ack, %d clients | %d | %.4f ms | | %.2f µs/client, %.3g bodies/s | |" % (
+                r["clients"], r["n"], r["copy_all_clients_ms_median"], r["copy_per_client_us"], r["body_copies_per_s"]))
+        elif b == "replay":
+            add("| 4 | replay, %d players (%d bodies), %d ticks, %d hashes checked | %d | %.1f ms | | %.0f ticks/s = **%.0f× real time** (60 Hz) | ≥ 100×: %s |" % (
+                r["players"], r["bodies"], r["ticks"], r["hashes_checked"], r["players"], r["ms_median"], r["ticks_per_s"],
+                r["x_real_time"], ok(r["x_real_time"] >= 100)))
+    # Box2D scene: best of R per engine and N, paired ratio per N.
+    by = {}
+    for r in peer:
+        by.setdefault((r["n"], r["engine"]), []).append(r)
+    for n in sorted({k[0] for k in by}):
+        ours = by.get((n, "arena"), [])
+        theirs = [r for (m, e), rs in by.items() if m == n and e != "arena" for r in rs]
+        ratios = []
+        pairs = {}
+        for r in ours + theirs:
+            pairs.setdefault((r.get("batch"), r.get("rep")), {})[r["engine"] == "arena"] = r
+        for p in pairs.values():
+            if True in p and False in p:
+                ratios.append(p[False]["ms_per_step_median"] / p[True]["ms_per_step_median"])
+        if ours:
+            best = min(ours, key=lambda r: r["ms_per_step_median"])
+            v3 = BOX2D_V3_MS.get(n)
+            speed = "%.1f× Box2D v3 (%.3g ms)" % (v3 / best["ms_per_step_median"], v3) if v3 else ""
+            overl = BOX2D_24_OVERLAPS.get(n)
+            target = ""
+            if v3 and overl is not None:
+                target = "≥ 5× v3: %s; overlaps ≤ %d: %s" % (ok(v3 / best["ms_per_step_median"] >= 5), overl,
+                                                            ok(best["overlaps_last_step"] <= overl))
+            add("| 7 | Box2D scene, Arena (best of %d, %d steps; %d overlaps, mean speed %.3f m/s) | %d | %.3f ms | %.3f ms | %s | %s |" % (
+                len(ours), best["steps"], best["overlaps_last_step"], best["mean_speed"], n, best["ms_per_step_median"],
+                best["ms_per_step_p90"], speed, target))
+        if theirs:
+            best = min(theirs, key=lambda r: r["ms_per_step_median"])
+            ratio = " Box2D/Arena paired: **%.1f×** (%.1f..%.1f)" % (statistics.median(ratios), min(ratios), max(ratios)) if ratios else ""
+            add("| 7 | Box2D scene, %s %s, same run (best of %d; %d overlaps, mean speed %.3f m/s) | %d | %.3f ms | %.3f ms |%s | |" % (
+                best["engine"], best["version"], len(theirs), best["overlaps_last_step"], best["mean_speed"], n,
+                best["ms_per_step_median"], best["ms_per_step_p90"], ratio))
+    print("\n".join(out))
+    for note in notes:
+        print()
+        print(note)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
