@@ -13,7 +13,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuff
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
   libclang-rt-14-dev libsodium-dev procps prometheus
 
-.PHONY: all deps build run test test-fast bench clean fuzz lint-docker
+.PHONY: all deps build run test test-fast bench bench-deps bench-e2e clean fuzz lint-docker
 
 all: build
 
@@ -85,8 +85,17 @@ lint-docker:
 	fi; \
 	set -e; cd $(TOOLS) && npx --yes dockerfile-utils lint ../Dockerfile && npx --yes dockerfilelint ../Dockerfile
 
-bench: build
+# Box2D 2.4.1 (the peer in item 7) and npm (the Colyseus peer) are only for the benchmarks.
+BENCH_PACKAGES := libbox2d-dev npm
+bench-deps:
+	@$(MAKE) --no-print-directory deps PACKAGES="$(BENCH_PACKAGES)"
+
+bench: build bench-deps
 	./bench/run.sh $(BUILD)/bin
+
+# End to end: the server and the bots pinned to one core each, and the Colyseus peer.
+bench-e2e: build bench-deps
+	./bench/e2e.sh $(BUILD)/bin
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-*

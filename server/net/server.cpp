@@ -1,5 +1,7 @@
 #include "server/net/server.hpp"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -21,6 +23,16 @@ int64_t steady_now_ns() {
 }
 
 double ms(int64_t ns) { return static_cast<double>(ns) / 1e6; }
+
+// CPU time and peak memory of this process, for the benchmarks and capacity planning.
+nlohmann::json process_figures() {
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6; };
+    return {{"cpu_user_s", seconds(usage.ru_utime)},
+            {"cpu_system_s", seconds(usage.ru_stime)},
+            {"peak_rss_kib", usage.ru_maxrss}};
+}
 
 }  // namespace
 
@@ -284,6 +296,7 @@ void server::write_stats_json(const std::string& path) const {
           {"handshake_timeout_s", static_cast<double>(options_.handshake_timeout_ns) / 1e9},
           {"stall_timeout_s", static_cast<double>(options_.stall_timeout_ns) / 1e9}}},
         {"connections_peak", connections_peak_},
+        {"process", process_figures()},
         {"bytes_in_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_in) / seconds : 0},
         {"bytes_out_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_out) / seconds : 0},
     };

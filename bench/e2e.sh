@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# make bench-e2e: arena-server pinned to CPU 1 and arena-bots to CPU 0, 64, 256 and 512 bots
+# for 20 s each at 60 Hz ticks and 20 Hz snapshots; then the Colyseus peer and Arena under the
+# same 200-client load in the same minute. Prints one markdown table per part.
+# Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), COLYSEUS (../shared/peers/colyseus).
+set -euo pipefail
+bin=${1:-build/bin}
+here=$(cd "$(dirname "$0")" && pwd)
+counts=${E2E_BOTS:-64 256 512}
+seconds=${E2E_SECONDS:-20}
+colyseus=${COLYSEUS:-$here/../../shared/peers/colyseus}
+work=$(mktemp -d /tmp/arena-bench-e2e.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+pin_server=(); pin_bots=()
+if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
+
+# run_arena N LABEL: one run; leaves $work/LABEL.server.json and $work/LABEL.bots.json.
+run_arena() {
+  local n=$1 label=$2
+  "${pin_server[@]}" "$bin/arena-server" --port 0 --max-players "$n" --max-connections $((2 * n + 16)) \
+    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 \
+    --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
+  local server=$! port=""
+  for _ in $(seq 100); do
+    port=$(sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$work/$label.out"); [ -n "$port" ] && break; sleep 0.1
+  done
+  [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
+  "${pin_bots[@]}" "$bin/arena-bots" --port "$port" --bots "$n" --duration "$seconds" --connect-rate 500 \
+    --behavior mixed --seed 1 --quiet --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 || true
+  # Stopped as soon as the bots are done, so that its CPU per second covers the load only.
+  kill -TERM "$server"
+  wait "$server" || true
+}
+
+echo "## End to end: arena-server on CPU 1, arena-bots on CPU 0, ${seconds} s, 60 Hz ticks, 20 Hz snapshots"
+echo
+for n in $counts; do
+  echo "running $n bots..." >&2
+  run_arena "$n" "arena-$n"
+done
+python3 "$here/e2e_table.py" arena "$work" $counts
+echo
+echo "The window counts from the server's start to SIGTERM right after the bots' last second, joins included."
+
+if [ -x "$colyseus/run.sh" ]; then
+  echo
+  echo "## Against Colyseus: 200 clients sending 60 inputs/s, 60 Hz simulation, 20 Hz broadcast, server on CPU 1"
+  echo
+  echo "running Colyseus with 200 clients..." >&2
+  "$colyseus/run.sh" 200 "$seconds" > "$work/colyseus.json" 2> "$work/colyseus.log" || { tail -20 "$work/colyseus.log" >&2; }
+  echo "running Arena with 200 bots..." >&2
+  run_arena 200 arena-200
+  python3 "$here/e2e_table.py" colyseus "$work"
+else
+  echo
+  echo "Colyseus comparison skipped: $colyseus/run.sh not found."
+fi

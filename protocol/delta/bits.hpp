@@ -1,0 +1,132 @@
+#pragma once
+// Bit packing for the delta codec: bits go into bytes least significant first; integers are
+// zigzag-mapped (small magnitudes of either sign → small codes) and written as Exp-Golomb
+// codes of order k (a run of zeros, a one, then the rest of the number: about
+// 2·log2(n / 2^k) + k + 1 bits, so small values are short and no value is impossible).
+// The reader takes untrusted bytes: reading past the end or an over-long code sets a sticky
+// failure flag and returns 0, so a decoder checks once per section, never crashes.
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace arena::protocol::delta {
+
+inline constexpr unsigned max_golomb_order = 24;
+
+[[nodiscard]] constexpr std::uint64_t zigzag(std::int64_t v) noexcept {
+  // C++20: >> of a negative value is arithmetic, and the casts are modular.
+  return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
+}
+[[nodiscard]] constexpr std::int64_t unzigzag(std::uint64_t n) noexcept {
+  return static_cast<std::int64_t>((n >> 1) ^ (~(n & 1) + 1));
+}
+
+// Bits an Exp-Golomb code of order k takes for n (n < 2^62).
+[[nodiscard]] constexpr unsigned golomb_bits(std::uint64_t n, unsigned k) noexcept {
+  const auto width = static_cast<unsigned>(std::bit_width(n + (std::uint64_t{1} << k)));
+  return 2 * width - 1 - k;
+}
+
+class bit_writer {
+ public:
+  explicit bit_writer(std::vector<std::uint8_t>& out) : out_(out) {}
+
+  // n ≤ 32 bits of v (higher bits of v must be 0).
+  void put(std::uint64_t v, unsigned n) {
+    acc_ |= v << used_;
+    used_ += n;
+    while (used_ >= 8) {
+      out_.push_back(static_cast<std::uint8_t>(acc_));
+      acc_ >>= 8;
+      used_ -= 8;
+    }
+  }
+  void put_wide(std::uint64_t v, unsigned n) {  // n ≤ 64
+    while (n > 32) {
+      put(v & 0xffffffffu, 32);
+      v >>= 32;
+      n -= 32;
+    }
+    put(v, n);
+  }
+  // Exp-Golomb, order k ≤ max_golomb_order, n < 2^62.
+  void put_golomb(std::uint64_t n, unsigned k) {
+    const std::uint64_t m = n + (std::uint64_t{1} << k);
+    const auto width = static_cast<unsigned>(std::bit_width(m));
+    put_wide(0, width - 1 - k);
+    put(1, 1);
+    put_wide(m & ((std::uint64_t{1} << (width - 1)) - 1), width - 1);
+  }
+  // Pads the last byte with zero bits.
+  void flush() {
+    if (used_ > 0) out_.push_back(static_cast<std::uint8_t>(acc_));
+    acc_ = 0;
+    used_ = 0;
+  }
+
+ private:
+  std::vector<std::uint8_t>& out_;
+  std::uint64_t acc_ = 0;
+  unsigned used_ = 0;  // < 8 between calls
+};
+
+class bit_reader {
+ public:
+  explicit bit_reader(std::span<const std::uint8_t> bytes) noexcept : bytes_(bytes) {}
+
+  [[nodiscard]] bool failed() const noexcept { return failed_; }
+  [[nodiscard]] std::uint64_t bits_left() const noexcept { return bytes_.size() * 8 - pos_; }
+
+  // n ≤ 32 bits; 0 (and failed) when fewer are left.
+  std::uint64_t get(unsigned n) noexcept {
+    if (n > bits_left()) return fail();
+    const std::size_t byte = pos_ >> 3;
+    const unsigned shift = pos_ & 7;
+    const std::size_t avail = bytes_.size() - byte < 8 ? bytes_.size() - byte : 8;
+    std::uint64_t w = 0;
+    for (std::size_t i = 0; i < avail; ++i) w |= std::uint64_t{bytes_[byte + i]} << (8 * i);
+    pos_ += n;
+    return (w >> shift) & ((std::uint64_t{1} << n) - 1);
+  }
+  std::uint64_t get_wide(unsigned n) noexcept {  // n ≤ 64
+    std::uint64_t v = 0;
+    unsigned at = 0;
+    while (n > 32) {
+      v |= get(32) << at;
+      at += 32;
+      n -= 32;
+    }
+    return v | (get(n) << at);
+  }
+  // Refuses (failed, 0) a code longer than the writer can produce: the result is < 2^62.
+  std::uint64_t get_golomb(unsigned k) noexcept {
+    unsigned zeros = 0;
+    while (get(1) == 0) {
+      if (failed_ || ++zeros + k > 61) return fail();
+    }
+    const unsigned low = zeros + k;
+    const std::uint64_t m = (std::uint64_t{1} << low) | get_wide(low);
+    return failed_ ? 0 : m - (std::uint64_t{1} << k);
+  }
+
+  // The writer pads with at most 7 zero bits: anything else after the data is malformed.
+  [[nodiscard]] bool at_clean_end() noexcept {
+    const std::uint64_t left = bits_left();
+    return !failed_ && left < 8 && get(static_cast<unsigned>(left)) == 0;
+  }
+
+ private:
+  std::uint64_t fail() noexcept {
+    failed_ = true;
+    pos_ = bytes_.size() * 8;
+    return 0;
+  }
+
+  std::span<const std::uint8_t> bytes_;
+  std::uint64_t pos_ = 0;
+  bool failed_ = false;
+};
+
+}  // namespace arena::protocol::delta
