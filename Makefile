@@ -85,8 +85,9 @@ lint-docker:
 	fi; \
 	set -e; cd $(TOOLS) && npx --yes dockerfile-utils lint ../Dockerfile && npx --yes dockerfilelint ../Dockerfile
 
-# Box2D 2.4.1 (the peer in item 7) and npm (the Colyseus peer) are only for the benchmarks.
-BENCH_PACKAGES := libbox2d-dev npm
+# Box2D 2.4.1, the peer in item 7, is only for the benchmarks (the Colyseus peer needs node and
+# npm, which the machine image has; bench/e2e.sh skips it with a note without them).
+BENCH_PACKAGES := libbox2d-dev
 bench-deps:
 	@$(MAKE) --no-print-directory deps PACKAGES="$(BENCH_PACKAGES)"
 

@@ -42,7 +42,7 @@ python3 "$here/e2e_table.py" arena "$work" $counts
 echo
 echo "The window counts from the server's start to SIGTERM right after the bots' last second, joins included."
 
-if [ -x "$colyseus/run.sh" ]; then
+if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
   echo
   echo "## Against Colyseus: 200 clients sending 60 inputs/s, 60 Hz simulation, 20 Hz broadcast, server on CPU 1"
   echo
@@ -53,5 +53,5 @@ if [ -x "$colyseus/run.sh" ]; then
   python3 "$here/e2e_table.py" colyseus "$work"
 else
   echo
-  echo "Colyseus comparison skipped: $colyseus/run.sh not found."
+  echo "Colyseus comparison skipped: $colyseus/run.sh or npm not found."
 fi
