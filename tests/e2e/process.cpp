@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -77,12 +76,19 @@ void child_process::signal(int signo) {
 std::string child_process::output() const { return read_file(output_file_); }
 
 std::optional<unsigned> wait_for_listening(const child_process& server, std::chrono::milliseconds timeout) {
-    static const std::regex listening(R"(listening on [^\s:]+:(\d+))");
+    // "listening on HOST:PORT", a whole line (the server flushes it in one write).
+    const std::string prefix = "listening on ";
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < deadline) {
-        std::smatch m;
         const std::string out = server.output();
-        if (std::regex_search(out, m, listening)) return static_cast<unsigned>(std::stoul(m[1].str()));
+        const size_t at = out.find(prefix);
+        const size_t end = at == std::string::npos ? std::string::npos : out.find('\n', at);
+        const size_t colon = end == std::string::npos ? std::string::npos : out.rfind(':', end);
+        if (colon != std::string::npos && colon > at) {
+            const std::string port = out.substr(colon + 1, end - colon - 1);
+            if (!port.empty() && port.find_first_not_of("0123456789") == std::string::npos)
+                return static_cast<unsigned>(std::stoul(port));
+        }
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return std::nullopt;
