@@ -229,13 +229,17 @@ std::variant<world::world_config, config_error> parse_config_json(std::string_vi
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // parse_error for bad syntax, out_of_range for a number too large to represent (found
+        // by fuzz_config; kept in tests/fuzz/regressions/fuzz_config/).
         return config_error{std::string("invalid JSON: ") + e.what()};
     }
     try {
         return read_world(j);
     } catch (const bad_field& e) {
         return config_error{e.message};
+    } catch (const json::exception& e) {
+        return config_error{std::string("invalid config: ") + e.what()};
     }
 }
 
