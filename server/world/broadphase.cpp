@@ -18,11 +18,36 @@ uint32_t cell_coordinate(real offset, real cell, uint32_t count) {
     return std::min(static_cast<uint32_t>(std::min<real>(c, 1 << 30)), count - 1);
 }
 
+}  // namespace
+
 uint32_t cell_index(const grid& g, const vec2& p) {
     const uint32_t cx = cell_coordinate(p.x() - g.origin.x(), g.cell.x(), g.nx);
     const uint32_t cy = cell_coordinate(p.y() - g.origin.y(), g.cell.y(), g.ny);
     return cy * g.nx + cx;
 }
+
+namespace {
+
+// The run of `cell`, moving `cursor` to it. The next row's targets grow with the current cell,
+// except that a cell's (+1, +1) may lie past the next cell's (−1, +1): the cursor steps back at
+// most two runs, so the whole walk stays O(runs).
+uint32_t find_run_from(const broadphase_scratch& s, uint32_t& cursor, uint32_t cell) {
+    const uint32_t runs = static_cast<uint32_t>(s.run_cell.size());
+    while (cursor > 0 && s.run_cell[cursor - 1] >= cell) --cursor;
+    while (cursor < runs && s.run_cell[cursor] < cell) ++cursor;
+    return cursor < runs && s.run_cell[cursor] == cell ? cursor : no_run;
+}
+
+void add_pair(broadphase_scratch& s, uint32_t a, uint32_t b) {
+    s.pairs.emplace_back(std::min(a, b), std::max(a, b));
+}
+
+void all_pairs(size_t count, broadphase_scratch& s) {
+    for (uint32_t a = 0; a < count; ++a)
+        for (uint32_t b = a + 1; b < count; ++b) s.pairs.emplace_back(a, b);
+}
+
+}  // namespace
 
 // Sorts the bodies by cell (stable, so in index order within a cell) and lists the occupied
 // cells as runs. Work is O(bodies), whatever the number of cells: the asteroids preset has about
@@ -68,34 +93,11 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     s.run_start.push_back(static_cast<uint32_t>(n));
 }
 
-constexpr uint32_t no_run = ~0u;
-
 // The run of `cell`, searching the whole list (for neighbours across a wrapped edge).
 uint32_t find_run(const broadphase_scratch& s, uint32_t cell) {
     const auto at = std::lower_bound(s.run_cell.begin(), s.run_cell.end(), cell);
     return at != s.run_cell.end() && *at == cell ? static_cast<uint32_t>(at - s.run_cell.begin()) : no_run;
 }
-
-// The run of `cell`, moving `cursor` to it. The next row's targets grow with the current cell,
-// except that a cell's (+1, +1) may lie past the next cell's (−1, +1): the cursor steps back at
-// most two runs, so the whole walk stays O(runs).
-uint32_t find_run_from(const broadphase_scratch& s, uint32_t& cursor, uint32_t cell) {
-    const uint32_t runs = static_cast<uint32_t>(s.run_cell.size());
-    while (cursor > 0 && s.run_cell[cursor - 1] >= cell) --cursor;
-    while (cursor < runs && s.run_cell[cursor] < cell) ++cursor;
-    return cursor < runs && s.run_cell[cursor] == cell ? cursor : no_run;
-}
-
-void add_pair(broadphase_scratch& s, uint32_t a, uint32_t b) {
-    s.pairs.emplace_back(std::min(a, b), std::max(a, b));
-}
-
-void all_pairs(size_t count, broadphase_scratch& s) {
-    for (uint32_t a = 0; a < count; ++a)
-        for (uint32_t b = a + 1; b < count; ++b) s.pairs.emplace_back(a, b);
-}
-
-}  // namespace
 
 body_extent measure_extent(std::span<const body> bodies) {
     body_extent e;
@@ -108,10 +110,14 @@ grid make_grid(std::span<const body> bodies, const world_config& config) {
 }
 
 grid make_grid(const body_extent& extent, size_t count, const world_config& config) {
-    grid g;
     // Cells span the largest diameter plus the speculative distance: any pair that may touch
     // this step lies in the same or neighbouring cells.
-    const real target = std::max<real>(2 * extent.max_radius + config.speculative_distance, 1e-3f);
+    return make_grid(extent, count, config, 2 * extent.max_radius + config.speculative_distance);
+}
+
+grid make_grid(const body_extent& extent, size_t count, const world_config& config, real cell_size) {
+    grid g;
+    const real target = std::max<real>(cell_size, 1e-3f);
     if (config.boundary == boundary::wrap) {
         g.wraps = true;
         g.nx = cells_along(config.size.x(), target);

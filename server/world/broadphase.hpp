@@ -58,6 +58,17 @@ body_extent measure_extent(std::span<const body> bodies);
 // The grid that covers bodies of this extent (`count` of them) under `config`'s boundary.
 grid make_grid(const body_extent& extent, size_t count, const world_config& config);
 grid make_grid(std::span<const body> bodies, const world_config& config);
+// The same with cells at least `cell_size` wide (m): the view index uses cells a view radius wide.
+grid make_grid(const body_extent& extent, size_t count, const world_config& config, real cell_size);
+
+// The cell of a point: points outside the grid go to its edge cells.
+uint32_t cell_index(const grid& g, const vec2& p);
+// Sorts the bodies by cell into scratch.sorted (stable: index order within a cell) and lists the
+// occupied cells as runs (run_cell, run_start). O(bodies), whatever the number of cells.
+void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch);
+// The run of `cell` in scratch.run_cell, or no_run when the cell is empty.
+inline constexpr uint32_t no_run = ~0u;
+uint32_t find_run(const broadphase_scratch& scratch, uint32_t cell);
 
 // Fills scratch.pairs with candidate pairs of body indices (a < b), each pair once.
 void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch);
