@@ -74,7 +74,8 @@ asio::awaitable<void> bot::run() {
         socket_.set_option(asio::ip::tcp::no_delay(true), ec);
         phase_ = phase::joining;
         const std::string name = fleet_.opts().name_prefix + "-" + std::to_string(index_);
-        queue(protocol::encode_hello(protocol::protocol_version, name, token_for(fleet_.opts(), name)));
+        queue(protocol::encode_hello(protocol::protocol_version, name, token_for(fleet_.opts(), name),
+                                     !fleet_.opts().full_snapshots));
         asio::co_spawn(socket_.get_executor(), writer(), asio::detached);
         co_await reader();
     } catch (const std::exception& e) {
@@ -147,6 +148,7 @@ void bot::queue(std::span<const std::uint8_t> bytes) {
 }
 
 void bot::handle_frame(std::span<const std::uint8_t> frame) {
+    message_bytes_ = frame.size();
     const auto verified = protocol::verify_message(frame, protocol::server_frame_limits);
     if (!verified) {
         end(end_kind::protocol_error, "invalid message from the server: " + verified.error);
@@ -184,6 +186,7 @@ void bot::on_welcome(const protocol::Message& message) {
     entity_id_ = w.entity_id;
     tick_rate_ = w.tick_rate;
     predictor_.emplace(*config, entity_id_, player_id_);
+    if (!fleet_.opts().full_snapshots) deltas_.emplace(tick_rate_);
     behavior_.emplace(kind_, fleet_.opts().seed, index_, *config);
     phase_ = phase::playing;
     outcome_.joined = true;
@@ -204,11 +207,33 @@ void bot::on_snapshot(const protocol::Message& message) {
         m.snapshot_gap_ms.add(std::chrono::duration<double, std::milli>(now - last_snapshot_at_).count());
     }
     last_snapshot_at_ = now;
+    m.snapshot_bytes_each.add(static_cast<double>(message_bytes_));
+    m.snapshot_bytes += message_bytes_;
+
+    std::span<const protocol::BodyState> bodies = snapshot.bodies;
+    if (snapshot.is_delta) {
+        if (!deltas_) return end(end_kind::protocol_error, "Snapshot: a delta, but this bot asked for full snapshots");
+        ++m.delta_snapshots;
+        const auto view = deltas_->receive(snapshot);
+        if (!view) {
+            // The receiver dropped its baselines, so the next ack (0) brings a full view.
+            ++m.delta_errors;
+            ++m.delta_problems[view.error];
+            return;
+        }
+        m.delta_payload_bytes += snapshot.delta.size();
+        m.delta_bodies += view.value.size();
+        decoded_.clear();
+        for (const protocol::delta::quantized_body& q : view.value) decoded_.push_back(protocol::delta::dequantize(q));
+        bodies = decoded_;
+    }
+    m.bodies_in_view.add(static_cast<double>(bodies.size()));
+    m.view_bodies += bodies.size();
 
     // Bodies come in increasing id order: a binary search, not a scan of every body.
-    const auto at = std::lower_bound(snapshot.bodies.begin(), snapshot.bodies.end(), entity_id_,
+    const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
                                      [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
-    const protocol::BodyState* own = (at != snapshot.bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
+    const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
     const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
     if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {
         return end(end_kind::protocol_error,
@@ -224,7 +249,7 @@ void bot::on_snapshot(const protocol::Message& message) {
         }
         m.input_lag_ticks.add(static_cast<double>(predictor_->last_sequence() - snapshot.ack_sequence));
     }
-    behavior_->observe(snapshot.bodies, entity_id_);
+    behavior_->observe(bodies, entity_id_);
 }
 
 void bot::on_pong(const protocol::Message& message) {
@@ -269,7 +294,8 @@ void bot::send_input(const world::player_input& input) {
     // A NaN input goes to the predictor too (the world skips inputs that fail check_input),
     // so that sequences stay consecutive.
     predictor_->on_input(sequence, input);
-    append_input(fleet_.encoder(), {sequence, input.thrust, input.turn, input.buttons}, pending_);
+    const std::uint32_t snapshot_ack = deltas_ ? deltas_->ack() : 0;
+    append_input(fleet_.encoder(), {sequence, input.thrust, input.turn, input.buttons, snapshot_ack}, pending_);
     ++fleet_.metrics().inputs_sent;
     if (pending_.size() > max_pending_bytes) return end(end_kind::socket_error, "server stopped reading our inputs");
     wake_.cancel();

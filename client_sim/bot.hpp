@@ -18,6 +18,7 @@
 #include "client_sim/metrics.hpp"
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
+#include "protocol/delta/receiver.hpp"
 #include "protocol/framing.hpp"
 #include "server/world/rng.hpp"
 
@@ -95,6 +96,9 @@ private:
     std::uint16_t tick_rate_ = 0;
     std::optional<predictor> predictor_;
     std::optional<behavior> behavior_;
+    std::optional<protocol::delta::receiver> deltas_;  // when the bot asked for delta snapshots
+    std::vector<protocol::BodyState> decoded_;         // the last delta's view as BodyState
+    std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
 
     world::rng fault_rng_;          // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

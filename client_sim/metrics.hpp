@@ -39,6 +39,12 @@ struct fleet_metrics {
     std::uint64_t inputs_sent = 0;
     std::uint64_t ticks_skipped = 0;  // shared ticker ticks dropped because the process lagged
     std::uint64_t predictions_exact = 0;  // prediction errors exactly 0 (well-behaved bots)
+    std::uint64_t snapshot_bytes = 0;     // frames of every snapshot received, bytes
+    std::uint64_t view_bodies = 0;        // bodies those snapshots held
+    std::uint64_t delta_snapshots = 0;    // snapshots that came as deltas (against a baseline or not)
+    std::uint64_t delta_errors = 0;       // deltas that did not decode (a server bug; the bot recovers)
+    std::uint64_t delta_payload_bytes = 0;  // the codec's bytes inside those deltas (no framing)
+    std::uint64_t delta_bodies = 0;         // bodies the decoded deltas held
 
     // The current second, for the progress line; rolled over by the fleet's reporter.
     std::uint64_t interval_bytes_in = 0;
@@ -53,6 +59,8 @@ struct fleet_metrics {
     sample_set prediction_error_m;       // see prediction.hpp
     sample_set input_lag_ticks;          // inputs sent but not yet consumed, at each snapshot
     sample_set snapshots_per_s_per_bot;  // filled at the end, one value per bot
+    sample_set bodies_in_view;           // per snapshot
+    sample_set snapshot_bytes_each;      // per snapshot, its frame's bytes
 
     // One value per second of the run, the whole fleet.
     sample_set snapshots_per_s;
@@ -61,6 +69,7 @@ struct fleet_metrics {
 
     tally rejects;      // every Reject received: "code: reason"
     tally disconnects;  // every connection that ended before the run did, by reason
+    tally delta_problems;  // why deltas did not decode
 };
 
 }  // namespace arena::bots

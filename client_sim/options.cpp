@@ -45,6 +45,8 @@ int parse_options(int argc, char** argv, options& out) {
         ->check(CLI::Range(0.1, 3600.0))
         ->capture_default_str();
     app.add_flag("--quiet,-q", out.quiet, "no progress line each second");
+    app.add_flag("--full-snapshots", out.full_snapshots,
+                 "ask for full BodyState snapshots instead of deltas (no Hello.delta_snapshots)");
 
     if (const int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
     if (!token_secret_path.empty()) {

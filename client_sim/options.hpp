@@ -28,6 +28,7 @@ struct options {
     std::optional<auth::token_secret> token_secret;
     bool quiet = false;             // no progress lines
     double join_timeout = 10;       // s from launch to Welcome before a bot gives up
+    bool full_snapshots = false;    // do not ask for delta snapshots (the simple client's path)
 };
 
 // Parses argv into `out`. Returns -1 when the program should go on, else its exit code

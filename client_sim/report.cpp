@@ -52,6 +52,16 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     r.snapshots = m.snapshots;
     r.inputs_sent = m.inputs_sent;
     r.ticks_skipped = m.ticks_skipped;
+    r.snapshot_bytes = m.snapshot_bytes;
+    r.view_bodies = m.view_bodies;
+    r.delta_snapshots = m.delta_snapshots;
+    r.delta_errors = m.delta_errors;
+    r.delta_problems = m.delta_problems;
+    if (m.delta_bodies != 0)
+        r.delta_payload_bytes_per_body =
+            static_cast<double>(m.delta_payload_bytes) / static_cast<double>(m.delta_bodies);
+    if (m.view_bodies != 0)
+        r.bytes_per_body = static_cast<double>(m.snapshot_bytes) / static_cast<double>(m.view_bodies);
     if (!m.prediction_error_m.empty())
         r.prediction_exact_share =
             static_cast<double>(m.predictions_exact) / static_cast<double>(m.prediction_error_m.size());
@@ -61,6 +71,8 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
         {"snapshots_per_s_per_bot", m.snapshots_per_s_per_bot.summarize()},
         {"prediction_error_m", m.prediction_error_m.summarize()},
         {"input_lag_ticks", m.input_lag_ticks.summarize()},
+        {"bodies_in_view", m.bodies_in_view.summarize()},
+        {"snapshot_bytes", m.snapshot_bytes_each.summarize()},
         {"snapshots_per_s", m.snapshots_per_s.summarize()},
         {"bytes_in_per_s", m.bytes_in_per_s.summarize()},
         {"bytes_out_per_s", m.bytes_out_per_s.summarize()},
@@ -96,7 +108,12 @@ std::string summary_table(const final_report& r) {
                   static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
                   static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
                   static_cast<unsigned long long>(r.ticks_skipped));
+    out += format("snapshots: %llu deltas (%llu did not decode), %.2f bytes per body in view (frames), "
+                  "%.2f (delta payload)\n",
+                  static_cast<unsigned long long>(r.delta_snapshots), static_cast<unsigned long long>(r.delta_errors),
+                  r.bytes_per_body, r.delta_payload_bytes_per_body);
     append_tally(out, "rejects", r.rejects);
+    append_tally(out, "delta problems", r.delta_problems);
     append_tally(out, "disconnects", r.disconnects);
     append_tally(out, "misbehaving bots dropped", r.misbehaving_drops);
     append_tally(out, "failures", r.failures);
@@ -123,7 +140,14 @@ nlohmann::json to_json(const final_report& r) {
           {"bytes_out", r.bytes_out},
           {"snapshots", r.snapshots},
           {"inputs", r.inputs_sent},
-          {"ticks_skipped", r.ticks_skipped}}},
+          {"ticks_skipped", r.ticks_skipped},
+          {"snapshot_bytes", r.snapshot_bytes},
+          {"view_bodies", r.view_bodies},
+          {"delta_snapshots", r.delta_snapshots},
+          {"delta_errors", r.delta_errors}}},
+        {"bytes_per_body", r.bytes_per_body},
+        {"delta_payload_bytes_per_body", r.delta_payload_bytes_per_body},
+        {"delta_problems", tally_json(r.delta_problems)},
         {"figures", figures},
         {"prediction_exact_share", r.prediction_exact_share},
         {"rejects", tally_json(r.rejects)},

@@ -27,6 +27,13 @@ struct final_report {
     std::uint64_t inputs_sent = 0;
     std::uint64_t ticks_skipped = 0;
     double prediction_exact_share = 0;  // [0, 1] of the measured predictions, bit-exact
+    std::uint64_t snapshot_bytes = 0;   // every snapshot frame received
+    std::uint64_t view_bodies = 0;      // bodies in those snapshots
+    std::uint64_t delta_snapshots = 0;
+    std::uint64_t delta_errors = 0;
+    double bytes_per_body = 0;          // snapshot_bytes / view_bodies
+    double delta_payload_bytes_per_body = 0;  // the codec's bytes alone, per body, over the deltas
+    tally delta_problems;
     std::vector<std::pair<std::string, summary>> figures;  // in table order
     tally rejects;
     tally disconnects;

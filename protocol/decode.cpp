@@ -28,7 +28,7 @@ result<hello_msg> decode_hello(const Message& message) {
   const auto* t = message.payload_as<Hello>();
   if (t == nullptr) return result<hello_msg>::failure(unexpected(message, Payload::Hello));
   return result<hello_msg>::success(
-      {t->protocol_version(), to_string(t->name()), to_string(t->token())});
+      {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots()});
 }
 
 result<welcome_info> decode_welcome(const Message& message) {
@@ -44,6 +44,7 @@ result<welcome_info> decode_welcome(const Message& message) {
   w.world_config = to_string(t->world_config());
   w.world_config_hash = t->world_config_hash();
   w.world_version = t->world_version();
+  w.view_radius = t->view_radius();
   return result<welcome_info>::success(std::move(w));
 }
 
@@ -57,7 +58,7 @@ result<reject_msg> decode_reject(const Message& message) {
 result<input_msg> decode_input(const Message& message) {
   const auto* t = message.payload_as<Input>();
   if (t == nullptr) return result<input_msg>::failure(unexpected(message, Payload::Input));
-  const input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons()};
+  const input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons(), t->snapshot_ack()};
   if (!std::isfinite(in.thrust)) {
     return result<input_msg>::failure("Input.thrust is not finite");
   }
@@ -88,7 +89,11 @@ result<bye_msg> decode_bye(const Message& message) {
 result<snapshot_view> decode_snapshot(const Message& message) {
   const auto* t = message.payload_as<Snapshot>();
   if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
-  snapshot_view view{t->tick(), t->ack_sequence(), {}};
+  snapshot_view view{t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false};
+  if (const auto* delta = t->delta(); delta != nullptr) {
+    view.is_delta = true;
+    view.delta = {delta->data(), delta->size()};
+  }
   if (const auto* bodies = t->bodies(); bodies != nullptr && bodies->size() > 0) {
     // The Verifier checked the vector lies inside the frame, 4-byte aligned as BodyState
     // requires; structs are stored exactly as the C++ type lays them out.

@@ -26,12 +26,12 @@ void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type,
 }
 
 frame_bytes encode_hello(std::uint16_t version, std::string_view name,
-                         std::string_view token) {
+                         std::string_view token, bool delta_snapshots) {
   flatbuffers::FlatBufferBuilder fbb(small_message_bytes + name.size() + token.size());
   const auto name_offset = make_string(fbb, name);
   const auto token_offset = make_string(fbb, token);
   finish_message(fbb, Payload::Hello,
-                 CreateHello(fbb, version, name_offset, token_offset).Union());
+                 CreateHello(fbb, version, name_offset, token_offset, delta_snapshots).Union());
   return to_frame(fbb);
 }
 
@@ -43,7 +43,7 @@ frame_bytes encode_welcome(const welcome_info& w) {
   finish_message(fbb, Payload::Welcome,
                  CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate,
                                w.snapshot_rate, preset, config, w.world_config_hash,
-                               w.world_version)
+                               w.world_version, w.view_radius)
                      .Union());
   return to_frame(fbb);
 }
@@ -58,7 +58,7 @@ frame_bytes encode_reject(RejectCode code, std::string_view reason) {
 frame_bytes encode_input(const input_msg& in) {
   flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
   finish_message(fbb, Payload::Input,
-                 CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons).Union());
+                 CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack).Union());
   return to_frame(fbb);
 }
 

@@ -18,6 +18,7 @@ struct hello_msg {
   std::uint16_t protocol_version = 0;
   std::string name;   // UTF-8
   std::string token;  // opaque
+  bool delta_snapshots = false;  // the client decodes delta snapshots
   bool operator==(const hello_msg&) const = default;
 };
 
@@ -31,6 +32,7 @@ struct welcome_info {
   std::string world_config;             // JSON, the --config format
   std::uint64_t world_config_hash = 0;  // world_config_hash(world_config), config_hash.hpp
   std::uint32_t world_version = 0;
+  float view_radius = 0.0f;             // m; 0 = the whole world
   bool operator==(const welcome_info&) const = default;
 };
 
@@ -45,6 +47,7 @@ struct input_msg {
   float thrust = 0.0f;  // [-1, 1]
   float turn = 0.0f;    // [-1, 1]
   std::uint8_t buttons = 0;  // bit 0 = impulse/jump
+  std::uint32_t snapshot_ack = 0;  // newest delta snapshot tick decoded; 0 = none
   bool operator==(const input_msg&) const = default;
 };
 
@@ -68,7 +71,7 @@ struct bye_msg {
 inline constexpr std::uint8_t button_impulse = 1u << 0;
 
 [[nodiscard]] frame_bytes encode_hello(std::uint16_t version, std::string_view name,
-                                       std::string_view token);
+                                       std::string_view token, bool delta_snapshots = false);
 [[nodiscard]] frame_bytes encode_welcome(const welcome_info& welcome);
 [[nodiscard]] frame_bytes encode_reject(RejectCode code, std::string_view reason);
 [[nodiscard]] frame_bytes encode_input(const input_msg& input);

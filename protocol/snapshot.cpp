@@ -29,6 +29,17 @@ std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fb
   return finished(fbb);
 }
 
+std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb,
+                                                    std::uint32_t tick, std::uint32_t ack_sequence,
+                                                    std::uint32_t baseline_tick,
+                                                    std::span<const std::uint8_t> delta) {
+  fbb.Clear();
+  const auto bytes = fbb.CreateVector(delta.data(), delta.size());
+  finish_message(fbb, Payload::Snapshot,
+                 CreateSnapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes).Union());
+  return finished(fbb);
+}
+
 void snapshot_encoder::build(std::uint32_t tick, std::span<const BodyState> bodies) {
   // FlatBuffers omits a field equal to its default; ack_sequence must be present in the
   // buffer to be patched in place, so force every field to be written.

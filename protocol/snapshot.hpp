@@ -16,6 +16,13 @@ std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fb
                                               std::uint32_t tick, std::uint32_t ack_sequence,
                                               std::span<const BodyState> bodies);
 
+// Clears fbb and encodes one client's delta Snapshot frame (empty bodies; `delta` holds the
+// codec's bytes, protocol/delta/codec.hpp). baseline_tick 0: encoded without a baseline.
+std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb,
+                                                    std::uint32_t tick, std::uint32_t ack_sequence,
+                                                    std::uint32_t baseline_tick,
+                                                    std::span<const std::uint8_t> delta);
+
 // Encodes a tick's snapshot once; each client's copy differs only in ack_sequence, which is
 // patched into the copy in place. Cost per client: one memcpy of the frame.
 class snapshot_encoder {

@@ -39,6 +39,17 @@ inline CLI::Option* add_vec2_option(CLI::App& app, const std::string& name, worl
         ->type_name("X,Y");
 }
 
+// A finite number ≥ 0. CLI11's NonNegativeNumber lets "nan" through (every comparison with
+// NaN is false), and a NaN radius or duration must never reach the server.
+inline const CLI::Validator finite_non_negative(
+    [](std::string& text) {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0)
+            return std::string("expected a finite number >= 0, got '") + text + "'";
+        return std::string();
+    },
+    "NUMBER >= 0");
+
 // Runs CLI11's parser; usage errors print one line and give exit code 2, --help gives 0.
 // Returns -1 when parsing succeeded and the program should go on.
 inline int parse_or_exit_code(CLI::App& app, int argc, char** argv) {

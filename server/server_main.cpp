@@ -31,22 +31,22 @@ int main(int argc, char** argv) {
     app.add_option("--seed", options.game.seed, "world seed (default 1)");
     app.add_option("--record", record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s, "run this many seconds, then shut down cleanly (default: until a signal)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(cli::finite_non_negative);
     app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
     app.add_option("--input-buffer", options.game.input_buffer, "inputs buffered per player (default 8)")->check(CLI::Range(1, 1024));
     app.add_option("--max-inputs-per-second", options.game.max_inputs_per_second,
                    "inputs per second before a client is dropped (default 2 x tick rate + 10)");
     app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::PositiveNumber & cli::finite_non_negative);
     app.add_option("--stall-timeout", stall_s, "seconds a client may block our writes before it is dropped (default 5)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::PositiveNumber & cli::finite_non_negative);
     app.add_option("--socket-send-buffer", options.socket_send_buffer, "kernel send buffer per client, bytes (default 262144)")
         ->check(CLI::Range(4096, 64 << 20));
     app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
     app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
                    "connections that have not sent Hello yet (default 64)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::PositiveNumber & cli::finite_non_negative);
     uint32_t hash_interval = 60;
     app.add_option("--hash-interval", hash_interval, "with --record: store the world hash every N ticks (default 60)")
         ->check(CLI::Range(1u, 1000000u));
@@ -55,12 +55,20 @@ int main(int argc, char** argv) {
                    "admit only Hellos with a token signed with this secret file (see arena-token)");
     app.add_option("--reconnect-grace", options.game.reconnect_grace_s,
                    "seconds a dropped player's body waits for it to come back with the same token (default 10)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(cli::finite_non_negative);
+    app.add_option("--view-radius", options.game.view_radius,
+                   "m: each client's snapshots hold its body and the bodies this near it; 0 = the whole world")
+        ->check(cli::finite_non_negative)
+        ->capture_default_str();
+    app.add_option("--delta-history", options.game.delta_history,
+                   "snapshots kept per client as delta baselines; older acks get a full view")
+        ->check(CLI::Range(1u, 1024u))
+        ->capture_default_str();
     ops::ops_options ops_options;
     ops::add_ops_flags(app, ops_options);  // --metrics-port, --agones, --agones-port, --agones-shutdown-timeout
     double drain_grace_s = 1;
     app.add_option("--drain-grace", drain_grace_s, "seconds clients get to read their Bye at shutdown (default 1)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(cli::finite_non_negative);
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
     if (auto error = ops::apply_agones_environment(ops_options, std::getenv("AGONES_SDK_HTTP_PORT")); !error.empty()) {
         std::fprintf(stderr, "arena-server: %s\n", error.c_str());

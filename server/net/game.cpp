@@ -13,7 +13,12 @@ game::game(const game_config& config, const world::world_config& world_config)
     : config_(config),
       world_(world_config, config.seed),
       world_config_json_(config::config_to_json(world_config)),
-      world_config_hash_(protocol::world_config_hash(world_config_json_)) {}
+      world_config_hash_(protocol::world_config_hash(world_config_json_)),
+      fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {}
+
+uint32_t game::snapshot_interval() const {
+    return std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
+}
 
 uint32_t game::input_limit() const {
     return config_.max_inputs_per_second ? config_.max_inputs_per_second : 2u * config_.tick_rate + 10u;
@@ -44,6 +49,7 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
             p.who = &who;
             p.inputs = input_buffer(config_.input_buffer);
             p.last_received_sequence = 0;  // a new connection numbers its inputs from 1 again
+            p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
             if (p.body_id != 0) pending_welcomes_.push_back(id);
             log_line("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
             return id;
@@ -52,7 +58,8 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
     if (players_.size() >= config_.max_players)
         return rejection{RejectCode::server_full, "server full (" + std::to_string(config_.max_players) + " players)"};
     const uint32_t id = next_player_id_++;
-    player p{&who, hello.name, identity, 0, 0, input_buffer(config_.input_buffer), 0, 0};
+    player p{&who, hello.name, identity, 0, 0, input_buffer(config_.input_buffer), 0, 0,
+             snapshot_client(baseline_ring(), hello.delta_snapshots)};
     players_.emplace(id, std::move(p));
     pending_joins_.push_back(id);
     return id;
@@ -112,6 +119,7 @@ std::optional<rejection> game::receive_input(uint32_t player_id, const protocol:
         return std::nullopt;
     }
     p.last_received_sequence = input.sequence;
+    p.snapshots.acked_tick = input.snapshot_ack;
     p.inputs.push({input.sequence, in});
     return std::nullopt;
 }
@@ -141,8 +149,7 @@ void game::tick() {
     if (world_.tick() % config_.tick_rate == 0) {
         for (auto& [id, p] : players_) p.inputs_this_window = 0;
     }
-    const uint32_t interval = std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
-    if (world_.tick() % interval == 0) broadcast_snapshot();
+    if (world_.tick() % snapshot_interval() == 0) broadcast_snapshot();
 }
 
 void game::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
@@ -173,27 +180,30 @@ void game::send_welcome(uint32_t player_id, const player& p) {
     welcome.world_config = world_config_json_;
     welcome.world_config_hash = world_config_hash_;
     welcome.world_version = world::world_version;
+    welcome.view_radius = config_.view_radius;
     p.who->send(protocol::encode_welcome(welcome));
 }
 
 void game::broadcast_snapshot() {
-    // The shared part is built once; each client's copy differs only in its ack.
-    body_states_.clear();
-    for (const world::body& b : world_.bodies()) {
-        body_states_.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle,
-                                  b.angular_velocity);
-    }
-    snapshot_.build(world_.tick(), body_states_);
-    counters_.snapshot_bytes = snapshot_.frame().size();
+    fanout_.begin(world_);
+    if (fanout_.shared_full_frame()) counters_.snapshot_bytes = fanout_.shared_frame_bytes();
     for (auto& [id, p] : players_) {
         if (p.body_id == 0 || !p.who) continue;
-        p.who->send_snapshot(snapshot_, p.inputs.last_consumed_sequence());
+        const uint32_t ack = p.inputs.last_consumed_sequence();
+        if (p.snapshots.delta) {
+            p.who->send_snapshot_frame(fanout_.delta_frame(p.snapshots, p.body_id, ack));
+        } else if (fanout_.shared_full_frame()) {
+            p.who->send_snapshot(fanout_.shared_frame(), ack);  // one memcpy, the ack patched in
+        } else {
+            p.who->send_snapshot_frame(fanout_.full_frame(p.body_id, ack));
+        }
         ++counters_.snapshots_sent;
     }
 }
 
 game_counters game::counters() const {
     game_counters total = counters_;
+    total.snapshots = fanout_.counters();
     for (const auto& [id, p] : players_) {
         total.input_underruns += p.inputs.underruns();
         total.input_overflows += p.inputs.overflows();

@@ -14,6 +14,7 @@
 #include "protocol/snapshot.hpp"
 #include "server/net/input_buffer.hpp"
 #include "server/net/participant.hpp"
+#include "server/net/snapshot_fanout.hpp"
 #include "server/replay/tick_record.hpp"
 #include "server/world/world.hpp"
 
@@ -30,6 +31,8 @@ struct game_config {
     std::string preset;               // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
     double reconnect_grace_s = 10;    // a dropped player's body waits this long for it
+    float view_radius = 0;            // m: snapshots hold the bodies this near a player's; 0 = all
+    uint32_t delta_history = 32;      // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
 };
 
 struct rejection {
@@ -49,6 +52,7 @@ struct game_counters {
     uint64_t reconnects = 0;
     uint64_t takeovers = 0;
     uint32_t players_peak = 0;
+    fanout_counters snapshots;  // frames by kind, and the delta frames' bytes and bodies
 };
 
 class game {
@@ -91,6 +95,7 @@ private:
         input_buffer inputs;
         uint32_t last_received_sequence = 0;
         uint32_t inputs_this_window = 0;
+        snapshot_client snapshots;  // delta baselines and the client's acknowledgement
     };
 
     void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
@@ -99,6 +104,8 @@ private:
     void expire_disconnected();
     void broadcast_snapshot();
     uint32_t input_limit() const;
+    uint32_t snapshot_interval() const;
+    tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
     game_config config_;
     world::world world_;
@@ -109,8 +116,7 @@ private:
     std::vector<uint32_t> pending_leaves_; // body ids to remove next tick
     std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
-    protocol::snapshot_encoder snapshot_;
-    std::vector<protocol::BodyState> body_states_;
+    snapshot_fanout fanout_;
     game_counters counters_;  // departed players' buffers folded in on leave
 };
 

@@ -280,6 +280,17 @@ void server::write_stats_json(const std::string& path) const {
         {"reconnects", c.reconnects},
         {"takeovers", c.takeovers},
         {"snapshots_sent", c.snapshots_sent},
+        {"snapshots",
+         {{"view_radius", options_.game.view_radius},
+          {"delta_frames", c.snapshots.delta_frames},
+          {"keyframes", c.snapshots.keyframes},
+          {"full_frames", c.snapshots.full_frames},
+          {"delta_bytes", c.snapshots.delta_bytes},
+          {"delta_payload_bytes", c.snapshots.delta_payload_bytes},
+          {"delta_bodies", c.snapshots.delta_bodies},
+          {"delta_bytes_per_body", c.snapshots.delta_bodies == 0 ? 0.0
+                                   : static_cast<double>(c.snapshots.delta_bytes) /
+                                         static_cast<double>(c.snapshots.delta_bodies)}}},
         {"bytes_in", run_traffic_.bytes_in},
         {"bytes_out", run_traffic_.bytes_out},
         {"messages_out", run_traffic_.messages_out},

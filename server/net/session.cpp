@@ -192,6 +192,16 @@ void session::send(protocol::frame_bytes frame) {
 void session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
     snapshot.copy_with_ack(ack_sequence, snapshot_next_);
+    snapshot_queued();
+}
+
+void session::send_snapshot_frame(std::span<const uint8_t> frame) {
+    if (closing_) return;
+    snapshot_next_.assign(frame.begin(), frame.end());
+    snapshot_queued();
+}
+
+void session::snapshot_queued() {
     snapshot_pending_ = true;
     if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.now_ns();
     wake_.cancel();

@@ -23,6 +23,7 @@ public:
     void start();
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
+    void send_snapshot_frame(std::span<const uint8_t> frame) override;
     void reject(protocol::RejectCode code, std::string_view reason) override;
     // Sends Bye(reason) and closes (server shutdown, a takeover).
     void say_bye(std::string_view reason) override;
@@ -41,6 +42,7 @@ private:
     bool dispatch(const protocol::Message& message);
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
+    void snapshot_queued();  // snapshot_next_ holds a new snapshot: wake the writer
 
     asio::ip::tcp::socket socket_;
     server& owner_;

@@ -17,6 +17,7 @@ namespace {
 struct null_participant : arena::net::participant {
     void send(arena::protocol::frame_bytes) override {}
     void send_snapshot(const arena::protocol::snapshot_encoder&, uint32_t) override {}
+    void send_snapshot_frame(std::span<const uint8_t>) override {}
     void reject(arena::protocol::RejectCode, std::string_view) override {}
     void say_bye(std::string_view) override {}
 };

@@ -19,7 +19,10 @@ struct fake_client : participant {
     std::optional<protocol::RejectCode> rejected;
     void send(protocol::frame_bytes frame) override { frames.push_back(std::move(frame)); }
     void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
-        auto frame = s.frame_with_ack(ack);
+        send_snapshot_frame(s.frame_with_ack(ack));
+    }
+    void send_snapshot_frame(std::span<const uint8_t> bytes) override {
+        const protocol::frame_bytes frame(bytes.begin(), bytes.end());
         auto m = protocol::verify_message(frame, protocol::server_frame_limits);
         REQUIRE(m);
         auto snap = protocol::decode_snapshot(*m.value);

@@ -1,0 +1,40 @@
+#include "server/net/view_history.hpp"
+
+namespace arena::net {
+
+namespace delta = protocol::delta;
+
+quantized_history::quantized_history(tick_ring ring) : ring_(ring), entries_(ring.depth) {}
+
+const std::vector<delta::quantized_body>& quantized_history::record(uint32_t tick,
+                                                                    std::span<const world::body> bodies) {
+    entry& e = entries_[ring_.slot(tick)];
+    e.tick = tick;
+    e.bodies.clear();  // keeps its capacity: no allocation once the world stops growing
+    for (const world::body& b : bodies) {
+        const protocol::BodyState state(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(),
+                                        b.velocity.y(), b.angle, b.angular_velocity);
+        e.bodies.push_back(delta::quantize(state));
+    }
+    return e.bodies;
+}
+
+const std::vector<delta::quantized_body>* quantized_history::at(uint32_t tick) const {
+    const entry& e = entries_[ring_.slot(tick)];
+    return tick != 0 && e.tick == tick ? &e.bodies : nullptr;
+}
+
+client_views::client_views(tick_ring ring) : ring_(ring), entries_(ring.depth) {}
+
+void client_views::record(uint32_t tick, std::span<const uint32_t> indices) {
+    entry& e = entries_[ring_.slot(tick)];
+    e.tick = tick;
+    e.indices.assign(indices.begin(), indices.end());
+}
+
+const std::vector<uint32_t>* client_views::at(uint32_t tick) const {
+    const entry& e = entries_[ring_.slot(tick)];
+    return tick != 0 && e.tick == tick ? &e.indices : nullptr;
+}
+
+}  // namespace arena::net

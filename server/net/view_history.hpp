@@ -1,0 +1,58 @@
+#pragma once
+// What the server remembers of the snapshots it sent, so that it can encode each client's
+// next snapshot against the one the client acknowledged (issue 7, protocol/README.md):
+// - the quantised world at each of the last `depth` snapshot ticks, shared by every client;
+// - per client, which of those bodies each of its last `depth` snapshots held (indices into
+//   the shared state: 4 bytes a body instead of 28).
+// Both are rings keyed by tick, so a baseline is found in O(1) and memory stays bounded.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "protocol/delta/quantize.hpp"
+#include "server/world/body.hpp"
+
+namespace arena::net {
+
+// The ring slot of a tick: snapshot ticks are multiples of one interval, so consecutive
+// snapshots take consecutive slots.
+struct tick_ring {
+    uint32_t depth = 32;      // snapshots kept
+    uint32_t interval = 1;    // ticks between snapshots
+    [[nodiscard]] size_t slot(uint32_t tick) const { return (tick / interval) % depth; }
+};
+
+class quantized_history {
+public:
+    explicit quantized_history(tick_ring ring);
+    // Quantises `bodies` (sorted by id) as snapshot `tick`'s state, replacing the oldest.
+    const std::vector<protocol::delta::quantized_body>& record(uint32_t tick, std::span<const world::body> bodies);
+    // Snapshot `tick`'s state, or null when it was never recorded or is no longer kept.
+    [[nodiscard]] const std::vector<protocol::delta::quantized_body>* at(uint32_t tick) const;
+
+private:
+    struct entry {
+        uint32_t tick = 0;  // 0: empty (snapshots follow a step, so their ticks are ≥ 1)
+        std::vector<protocol::delta::quantized_body> bodies;
+    };
+    tick_ring ring_;
+    std::vector<entry> entries_;
+};
+
+class client_views {
+public:
+    explicit client_views(tick_ring ring);
+    // The view sent at `tick`: indices into that tick's quantized_history state, increasing.
+    void record(uint32_t tick, std::span<const uint32_t> indices);
+    [[nodiscard]] const std::vector<uint32_t>* at(uint32_t tick) const;
+
+private:
+    struct entry {
+        uint32_t tick = 0;
+        std::vector<uint32_t> indices;
+    };
+    tick_ring ring_;
+    std::vector<entry> entries_;
+};
+
+}  // namespace arena::net
