@@ -5,8 +5,10 @@
 //   integrate  forces + semi-implicit Euler over 1M bodies, next to a streaming copy of as many bytes
 //   snapshot   snapshot_encoder::build + copy_with_ack: bodies per second, bytes per body
 //   replay     a recorded 64-player session re-simulated through the replayer, × real time
+//   bandwidth  256 moving players, full against delta snapshots, whole world and a view radius;
+//              1000 players with a view radius (issue 7)
 //
-// usage: arena-bench [--only step,integrate,snapshot,replay] [--quick]
+// usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick]
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
@@ -15,10 +17,11 @@
 #include <string>
 #include <vector>
 
+#include "bench/bandwidth.hpp"
 #include "bench/cases.hpp"
 
 int main(int argc, char** argv) {
-    std::string only = "step,integrate,snapshot,replay";
+    std::string only = "step,integrate,snapshot,replay,bandwidth";
     bool quick = false;
     std::string tmp_dir = "/tmp";
     for (int i = 1; i < argc; ++i) {
@@ -29,7 +32,7 @@ int main(int argc, char** argv) {
         } else if (!std::strcmp(argv[i], "--tmp") && i + 1 < argc) {
             tmp_dir = argv[++i];
         } else {
-            std::fprintf(stderr, "usage: arena-bench [--only step,integrate,snapshot,replay] [--quick] [--tmp DIR]\n");
+            std::fprintf(stderr, "usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick] [--tmp DIR]\n");
             return 2;
         }
     }
@@ -53,6 +56,14 @@ int main(int argc, char** argv) {
     }
     if (wants("replay")) {
         if (!bench_replay(64, quick ? 600 : 3600, tmp_dir + "/arena-bench-64p.arpl")) return 1;
+    }
+    if (wants("bandwidth")) {
+        const uint32_t ticks = quick ? 300 : 1200;
+        for (float radius : {0.0f, 100.0f}) {
+            bench_bandwidth(256, radius, false, ticks);
+            bench_bandwidth(256, radius, true, ticks);
+        }
+        bench_bandwidth(1000, 100.0f, true, quick ? 150 : 600);
     }
     return 0;
 }

@@ -33,14 +33,17 @@ class bit_writer {
  public:
   explicit bit_writer(std::vector<std::uint8_t>& out) : out_(out) {}
 
-  // n ≤ 32 bits of v (higher bits of v must be 0).
+  // n ≤ 32 bits of v (higher bits of v must be 0). Fewer than 32 bits wait in the
+  // accumulator between calls; whole 32-bit words go out at once.
   void put(std::uint64_t v, unsigned n) {
     acc_ |= v << used_;
     used_ += n;
-    while (used_ >= 8) {
-      out_.push_back(static_cast<std::uint8_t>(acc_));
-      acc_ >>= 8;
-      used_ -= 8;
+    if (used_ >= 32) {
+      const std::uint8_t word[4] = {static_cast<std::uint8_t>(acc_), static_cast<std::uint8_t>(acc_ >> 8),
+                                    static_cast<std::uint8_t>(acc_ >> 16), static_cast<std::uint8_t>(acc_ >> 24)};
+      out_.insert(out_.end(), word, word + 4);
+      acc_ >>= 32;
+      used_ -= 32;
     }
   }
   void put_wide(std::uint64_t v, unsigned n) {  // n ≤ 64
@@ -55,21 +58,31 @@ class bit_writer {
   void put_golomb(std::uint64_t n, unsigned k) {
     const std::uint64_t m = n + (std::uint64_t{1} << k);
     const auto width = static_cast<unsigned>(std::bit_width(m));
-    put_wide(0, width - 1 - k);
+    const unsigned zeros = width - 1 - k;
+    const std::uint64_t rest = m & ((std::uint64_t{1} << (width - 1)) - 1);
+    // The common case in one step: the zeros, the one and the rest are the bits of
+    // ((rest << 1) | 1) << zeros. The hot path of the server's snapshots.
+    if (zeros + width <= 32) {
+      put(((rest << 1) | 1) << zeros, zeros + width);
+      return;
+    }
+    put_wide(0, zeros);
     put(1, 1);
-    put_wide(m & ((std::uint64_t{1} << (width - 1)) - 1), width - 1);
+    put_wide(rest, width - 1);
   }
-  // Pads the last byte with zero bits.
+  // Writes the bits still waiting, padding the last byte with zero bits.
   void flush() {
-    if (used_ > 0) out_.push_back(static_cast<std::uint8_t>(acc_));
+    for (; used_ > 0; used_ = used_ > 8 ? used_ - 8 : 0) {
+      out_.push_back(static_cast<std::uint8_t>(acc_));
+      acc_ >>= 8;
+    }
     acc_ = 0;
-    used_ = 0;
   }
 
  private:
   std::vector<std::uint8_t>& out_;
   std::uint64_t acc_ = 0;
-  unsigned used_ = 0;  // < 8 between calls
+  unsigned used_ = 0;  // < 32 between calls
 };
 
 class bit_reader {

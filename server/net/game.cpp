@@ -149,7 +149,7 @@ void game::tick() {
     if (world_.tick() % config_.tick_rate == 0) {
         for (auto& [id, p] : players_) p.inputs_this_window = 0;
     }
-    if (world_.tick() % snapshot_interval() == 0) broadcast_snapshot();
+    send_snapshots();
 }
 
 void game::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
@@ -184,16 +184,24 @@ void game::send_welcome(uint32_t player_id, const player& p) {
     p.who->send(protocol::encode_welcome(welcome));
 }
 
-void game::broadcast_snapshot() {
+void game::send_snapshots() {
+    // BodyState clients all get theirs on the ticks that are multiples of the interval (one
+    // shared frame when they see the whole world). Delta clients cost a view query and an
+    // encoding each, so they are spread over the interval by player id: a third of them on
+    // each tick at 60 Hz ticks and 20 Hz snapshots, not all of them on one tick.
+    const uint32_t interval = snapshot_interval();
+    const uint32_t phase = world_.tick() % interval;
     fanout_.begin(world_);
-    if (fanout_.shared_full_frame()) counters_.snapshot_bytes = fanout_.shared_frame_bytes();
     for (auto& [id, p] : players_) {
         if (p.body_id == 0 || !p.who) continue;
+        if ((p.snapshots.delta ? id % interval : 0) != phase) continue;
         const uint32_t ack = p.inputs.last_consumed_sequence();
         if (p.snapshots.delta) {
             p.who->send_snapshot_frame(fanout_.delta_frame(p.snapshots, p.body_id, ack));
         } else if (fanout_.shared_full_frame()) {
-            p.who->send_snapshot(fanout_.shared_frame(), ack);  // one memcpy, the ack patched in
+            const protocol::snapshot_encoder& shared = fanout_.shared_frame();
+            counters_.snapshot_bytes = shared.frame().size();
+            p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
         } else {
             p.who->send_snapshot_frame(fanout_.full_frame(p.body_id, ack));
         }

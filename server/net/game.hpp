@@ -102,7 +102,7 @@ private:
     void send_welcome(uint32_t player_id, const player& p);
     void remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason);
     void expire_disconnected();
-    void broadcast_snapshot();
+    void send_snapshots();  // to the clients whose snapshot is due this tick
     uint32_t input_limit() const;
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }

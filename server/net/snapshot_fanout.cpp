@@ -7,22 +7,42 @@ namespace arena::net {
 
 namespace delta = protocol::delta;
 
-snapshot_fanout::snapshot_fanout(const fanout_config& config) : config_(config), history_(config.ring) {}
+snapshot_fanout::snapshot_fanout(const fanout_config& config)
+    // The shared state is kept for every tick (clients are spread over the interval), as far
+    // back as a client's oldest kept snapshot.
+    : config_(config), history_(tick_ring{config.ring.depth * config.ring.interval, 1}) {}
 
 void snapshot_fanout::begin(const world::world& w) {
     world_ = &w;
     tick_ = w.tick();
-    now_ = &history_.record(tick_, w.bodies());
-    states_.clear();
-    for (const world::body& b : w.bodies()) {
-        states_.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle,
-                             b.angular_velocity);
+    now_ = nullptr;
+    states_ready_ = index_ready_ = shared_ready_ = false;
+}
+
+const std::vector<delta::quantized_body>& snapshot_fanout::quantized() {
+    if (now_ == nullptr) now_ = &history_.record(tick_, world_->bodies());
+    return *now_;
+}
+
+const std::vector<protocol::BodyState>& snapshot_fanout::states() {
+    if (!states_ready_) {
+        states_.clear();
+        for (const world::body& b : world_->bodies()) {
+            states_.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(),
+                                 b.angle, b.angular_velocity);
+        }
+        states_ready_ = true;
     }
-    if (shared_full_frame()) {
-        shared_.build(tick_, states_);
-    } else {
-        index_.build(w.bodies(), w.config(), config_.view_radius);
+    return states_;
+}
+
+const protocol::snapshot_encoder& snapshot_fanout::shared_frame() {
+    if (!shared_ready_) {
+        shared_.build(tick_, states());
+        shared_ready_ = true;
     }
+    ++counters_.full_frames;
+    return shared_;
 }
 
 void snapshot_fanout::find_view(uint32_t body_id) {
@@ -37,45 +57,60 @@ void snapshot_fanout::find_view(uint32_t body_id) {
                                       [](const world::body& b, uint32_t id) { return b.id < id; });
     if (own == bodies.end() || own->id != body_id) return;  // not spawned: an empty view
     // The own body is always within the radius of itself, so the query includes it.
+    if (!index_ready_) {
+        index_.build(bodies, world_->config(), config_.view_radius);
+        index_ready_ = true;
+    }
     index_.query(bodies, own->position, view_);
+}
+
+delta::shared_encoder& snapshot_fanout::encoder_for(uint32_t baseline_tick) {
+    prepared_encoder* slot = nullptr;
+    for (prepared_encoder& e : encoders_) {
+        if (e.tick == tick_ && e.baseline_tick == baseline_tick) return e.encoder;
+        if (e.tick != tick_ && slot == nullptr) slot = &e;  // stale: reusable
+    }
+    if (slot == nullptr) slot = &encoders_.emplace_back();
+    slot->tick = tick_;
+    slot->baseline_tick = baseline_tick;
+    std::optional<delta::view> baseline;
+    if (baseline_tick != 0) baseline = delta::view(*history_.at(baseline_tick));
+    slot->encoder.prepare(quantized(), baseline, {tick_ - baseline_tick, config_.tick_rate});
+    return slot->encoder;
 }
 
 std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, uint32_t body_id,
                                                       uint32_t ack_sequence) {
     find_view(body_id);
-    current_.clear();
-    for (uint32_t i : view_) current_.push_back((*now_)[i]);
-
+    // This tick's state first: recording it replaces the ring's oldest tick, which must not
+    // be picked as a baseline below (and then overwritten under the encoder's feet).
+    quantized();
     // The baseline: the acknowledged view, when both its state and the client's record of it
-    // are still kept (an ack of a tick never sent, or too old, finds nothing: a keyframe).
-    std::optional<delta::view> baseline;
+    // are still kept (an ack of a tick never sent, or too old, finds nothing: a full view).
     uint32_t baseline_tick = 0;
+    const std::vector<uint32_t>* held = nullptr;
     const uint32_t acked = client.acked_tick;
-    if (acked != 0 && acked < tick_) {
-        const auto* state = history_.at(acked);
-        const auto* indices = client.views.at(acked);
-        if (state != nullptr && indices != nullptr) {
-            baseline_.clear();
-            for (uint32_t i : *indices) baseline_.push_back((*state)[i]);
-            baseline = delta::view(baseline_);
-            baseline_tick = acked;
-        }
+    if (acked != 0 && acked < tick_ && history_.at(acked) != nullptr) {
+        held = client.views.at(acked);
+        if (held != nullptr) baseline_tick = acked;
     }
-    delta::encode(current_, baseline, {tick_ - baseline_tick, config_.tick_rate}, delta_bytes_);
+    encoder_for(baseline_tick).encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(),
+                                      delta_bytes_);
     client.views.record(tick_, view_);
 
     const auto frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_);
-    ++(baseline ? counters_.delta_frames : counters_.keyframes);
+    ++(baseline_tick != 0 ? counters_.delta_frames : counters_.keyframes);
     counters_.delta_bytes += frame.size();
     counters_.delta_payload_bytes += delta_bytes_.size();
-    counters_.delta_bodies += current_.size();
+    counters_.delta_bodies += view_.size();
     return frame;
 }
 
 std::span<const uint8_t> snapshot_fanout::full_frame(uint32_t body_id, uint32_t ack_sequence) {
     find_view(body_id);
     full_states_.clear();
-    for (uint32_t i : view_) full_states_.push_back(states_[i]);
+    const auto& all = states();
+    for (uint32_t i : view_) full_states_.push_back(all[i]);
     ++counters_.full_frames;
     return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_);
 }

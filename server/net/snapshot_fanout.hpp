@@ -5,12 +5,17 @@
 // - other clients get BodyState snapshots: one frame shared by all when the view is the whole
 //   world, else one per client holding its view.
 // A client's view is its own body and every body within view_radius of it, found through a
-// grid index built once per snapshot (server/world/view_index.hpp).
+// grid index built once per tick that sends snapshots (server/world/view_index.hpp).
+//
+// Delta clients are spread over the ticks between two snapshots (game.cpp), so the fan-out
+// runs every tick for a share of them: each piece of per-tick work (quantising, indexing, the
+// shared frame) is done on first use in that tick.
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "protocol/delta/codec.hpp"
+#include "protocol/delta/shared_encoder.hpp"
 #include "protocol/snapshot.hpp"
 #include "server/net/view_history.hpp"
 #include "server/world/view_index.hpp"
@@ -20,7 +25,7 @@ namespace arena::net {
 
 struct fanout_config {
     float view_radius = 0;  // m; 0: the whole world
-    tick_ring ring;         // how many snapshots are kept as baselines, and their interval
+    tick_ring ring;         // a client's snapshots kept as baselines, and their interval
     uint16_t tick_rate = 60;
 };
 
@@ -45,8 +50,7 @@ class snapshot_fanout {
 public:
     explicit snapshot_fanout(const fanout_config& config);
 
-    // The tick's state: quantises it as this snapshot's baseline, indexes it for view queries,
-    // and builds the shared BodyState frame when every client sees the whole world.
+    // A new tick of this world: what the previous tick prepared is stale.
     void begin(const world::world& w);
 
     // The frame for a delta client whose body is `body_id`. Valid until the next call.
@@ -55,11 +59,7 @@ public:
     // True: BodyState clients share shared_frame(); false: each gets full_frame().
     [[nodiscard]] bool shared_full_frame() const { return config_.view_radius <= 0; }
     // The shared frame; counts one client served.
-    [[nodiscard]] const protocol::snapshot_encoder& shared_frame() {
-        ++counters_.full_frames;
-        return shared_;
-    }
-    [[nodiscard]] size_t shared_frame_bytes() const { return shared_.frame().size(); }
+    [[nodiscard]] const protocol::snapshot_encoder& shared_frame();
     // The BodyState frame of one client's view. Valid until the next call.
     std::span<const uint8_t> full_frame(uint32_t body_id, uint32_t ack_sequence);
 
@@ -69,17 +69,29 @@ public:
 private:
     // Indices (into the world's body span) of what the body `body_id` sees, into view_.
     void find_view(uint32_t body_id);
+    // This tick's work, each done once on first use.
+    const std::vector<protocol::delta::quantized_body>& quantized();
+    const std::vector<protocol::BodyState>& states();
+    // This tick's shared encoder against the state of `baseline_tick` (0: none), prepared on
+    // first use: clients that acknowledged the same tick share its per-body work.
+    protocol::delta::shared_encoder& encoder_for(uint32_t baseline_tick);
 
     fanout_config config_;
     const world::world* world_ = nullptr;
     uint32_t tick_ = 0;
     quantized_history history_;
     const std::vector<protocol::delta::quantized_body>* now_ = nullptr;  // this tick's in history_
+    bool states_ready_ = false, index_ready_ = false, shared_ready_ = false;
     world::view_index index_;
     protocol::snapshot_encoder shared_;
     std::vector<protocol::BodyState> states_;  // this tick's bodies as BodyState
     std::vector<uint32_t> view_;
-    std::vector<protocol::delta::quantized_body> current_, baseline_;
+    struct prepared_encoder {
+        uint32_t tick = 0;           // the tick it was prepared in; stale when not this one
+        uint32_t baseline_tick = 0;
+        protocol::delta::shared_encoder encoder;
+    };
+    std::vector<prepared_encoder> encoders_;  // a handful: one per baseline in use
     std::vector<uint8_t> delta_bytes_;
     std::vector<protocol::BodyState> full_states_;
     flatbuffers::FlatBufferBuilder fbb_{1024};

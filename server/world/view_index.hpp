@@ -19,10 +19,12 @@ public:
     // Appends to `out`, in increasing index order (the bodies' id order), every body whose
     // circle comes within the radius of `centre`: |centre − position| ≤ radius + body radius,
     // the shortest way round in a wrapping world. `bodies` must be the span given to build().
-    void query(std::span<const body> bodies, vec2 centre, std::vector<uint32_t>& out) const;
+    // Not const: it reuses scratch space (one index, one thread).
+    void query(std::span<const body> bodies, vec2 centre, std::vector<uint32_t>& out);
 
 private:
-    void visit_cell(std::span<const body> bodies, uint32_t cx, uint32_t cy, vec2 centre,
+    // `inside`: the whole cell lies within the radius, so every body in it is seen.
+    void visit_cell(std::span<const body> bodies, uint32_t cx, uint32_t cy, bool inside, vec2 centre,
                     std::vector<uint32_t>& out) const;
 
     world_config config_;
@@ -30,6 +32,9 @@ private:
     broadphase_scratch scratch_;
     real radius_ = 0;
     real reach_ = 0;  // radius + the largest body radius: how far a visible centre can be
+    static constexpr uint64_t max_table_cells = 1u << 20;
+    std::vector<uint32_t> run_of_cell_;  // cell → its run in scratch_, or no_run; empty: too many cells
+    std::vector<uint64_t> seen_;         // one bit per body, all zero between queries
 };
 
 }  // namespace arena::world

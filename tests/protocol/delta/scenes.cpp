@@ -1,6 +1,8 @@
 #include "scenes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace arena::protocol::delta::test {
 namespace {
@@ -68,6 +70,84 @@ std::vector<quantized_body> quantize_view(const std::vector<sim_body>& bodies) {
     out.push_back(quantize(BodyState(b.id, b.owner, b.x, b.y, b.vx, b.vy, b.angle, b.w)));
   }
   return out;
+}
+
+namespace {
+
+constexpr std::int32_t i32min = std::numeric_limits<std::int32_t>::min();
+constexpr std::int32_t i32max = std::numeric_limits<std::int32_t>::max();
+
+std::int32_t clamp32(std::int64_t v) {
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(v, i32min, i32max));
+}
+
+// A value of any magnitude: mostly game-like, sometimes at or near the type's limits.
+std::int32_t wild32(rng& r) {
+  switch (r.below(6)) {
+    case 0: return i32min;
+    case 1: return i32max;
+    case 2: return static_cast<std::int32_t>(r.next());
+    default: return static_cast<std::int32_t>(r.below(200000)) - 100000;
+  }
+}
+
+}  // namespace
+
+quantized_body random_body(rng& r, std::uint32_t id) {
+  quantized_body b;
+  b.id = id;
+  b.owner = r.chance(0.3) ? static_cast<std::uint32_t>(r.below(2000)) : 0;
+  if (r.chance(0.05)) b.owner = std::numeric_limits<std::uint32_t>::max();
+  const bool wild = r.chance(0.05);
+  b.x = wild ? wild32(r) : static_cast<std::int32_t>(r.below(400 * 256));
+  b.y = wild ? wild32(r) : static_cast<std::int32_t>(r.below(400 * 256));
+  b.vx = wild ? wild32(r) : static_cast<std::int32_t>(r.below(12 * 256)) - 6 * 256;
+  b.vy = wild ? wild32(r) : static_cast<std::int32_t>(r.below(12 * 256)) - 6 * 256;
+  b.angle = static_cast<std::int16_t>(r.next());
+  b.angular_velocity = wild ? static_cast<std::int16_t>(r.next())
+                            : static_cast<std::int16_t>(static_cast<int>(r.below(512)) - 256);
+  return b;
+}
+
+// One snapshot interval of `ticks` ticks at `rate`: most bodies move as predicted (up to
+// rounding), some accelerate, jump, spin up, change owner; some leave, some join.
+void evolve(std::vector<quantized_body>& view, rng& r, std::uint32_t ticks, std::uint32_t rate) {
+  std::vector<quantized_body> next;
+  next.reserve(view.size() + 64);
+  for (quantized_body b : view) {
+    if (r.chance(0.01)) continue;  // leaves
+    const double roll = r.uniform();
+    if (roll < 0.15) {  // unchanged: at rest
+      b.vx = b.vy = 0;
+      b.angular_velocity = 0;
+    } else if (roll < 0.6) {  // drifting
+      b.x = clamp32(b.x + std::int64_t{b.vx} * ticks / rate);
+      b.y = clamp32(b.y + std::int64_t{b.vy} * ticks / rate);
+    } else if (roll < 0.9) {  // thrusting and turning
+      b.vx = clamp32(b.vx + static_cast<std::int64_t>(r.below(513)) - 256);
+      b.vy = clamp32(b.vy + static_cast<std::int64_t>(r.below(513)) - 256);
+      b.x = clamp32(b.x + std::int64_t{b.vx} * ticks / rate + static_cast<std::int64_t>(r.below(5)) - 2);
+      b.y = clamp32(b.y + std::int64_t{b.vy} * ticks / rate);
+      b.angular_velocity = static_cast<std::int16_t>(std::clamp<int>(
+          b.angular_velocity + static_cast<int>(r.below(101)) - 50, -32768, 32767));
+      b.angle = static_cast<std::int16_t>(b.angle + b.angular_velocity / 8);
+    } else {  // anything: teleport, wild values, owner change
+      const quantized_body w = random_body(r, b.id);
+      b = r.chance(0.5) ? w : quantized_body{b.id, w.owner, b.x, w.y, b.vx, w.vy, w.angle, b.angular_velocity};
+    }
+    next.push_back(b);
+  }
+  // Joins: fresh ids (some far above, some reusing the gaps of bodies that left).
+  const std::uint64_t joins = r.below(40);
+  for (std::uint64_t k = 0; k < joins; ++k) {
+    const std::uint32_t id = r.chance(0.1) ? std::numeric_limits<std::uint32_t>::max() - static_cast<std::uint32_t>(r.below(4))
+                                           : static_cast<std::uint32_t>(r.below(20000));
+    const auto at = std::lower_bound(next.begin(), next.end(), id,
+                                     [](const quantized_body& b, std::uint32_t v) { return b.id < v; });
+    if (at != next.end() && at->id == id) continue;
+    next.insert(at, random_body(r, id));
+  }
+  view = std::move(next);
 }
 
 }  // namespace arena::protocol::delta::test

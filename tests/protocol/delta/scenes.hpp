@@ -49,4 +49,11 @@ void step(std::vector<sim_body>& bodies, rng& r, float dt);
 // The quantised view, sorted by id (bodies are kept in id order).
 std::vector<quantized_body> quantize_view(const std::vector<sim_body>& bodies);
 
+// Integer views for the codec's property tests: a random body (mostly game-like values,
+// sometimes the type's limits), and one snapshot interval of `ticks` ticks at `rate` over a
+// view: most bodies move as predicted (up to rounding), some accelerate, jump, spin up or
+// change owner; some leave, some join (fresh ids, some at the top of the range).
+quantized_body random_body(rng& r, std::uint32_t id);
+void evolve(std::vector<quantized_body>& view, rng& r, std::uint32_t ticks, std::uint32_t rate);
+
 }  // namespace arena::protocol::delta::test

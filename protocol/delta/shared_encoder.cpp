@@ -1,0 +1,182 @@
+#include "protocol/delta/shared_encoder.hpp"
+
+#include <cassert>
+
+#include "protocol/delta/bits.hpp"
+#include "protocol/delta/records.hpp"
+
+namespace arena::protocol::delta {
+namespace {
+
+namespace f = format;
+using namespace records;
+
+// Appends records to a pool of 64-bit words, bits least significant first, as bit_writer
+// would write them; each record starts on a new word.
+struct pool_sink {
+    std::vector<std::uint64_t>& pool;
+    const std::array<unsigned, f::class_count>& order;
+    std::uint64_t bit = 0;  // bits written since the record's first word
+
+    void append(std::uint64_t v, unsigned n) {  // n ≤ 64, higher bits of v zero
+        if (n == 0) return;
+        const unsigned at = bit % 64;
+        if (at == 0) pool.push_back(0);
+        pool.back() |= v << at;
+        if (at + n > 64) pool.push_back(v >> (64 - at));
+        bit += n;
+    }
+    void raw(std::uint64_t v, unsigned n) { append(v, n); }
+    void code(f::code_class c, std::uint64_t n) {
+        const unsigned k = order[c];
+        const std::uint64_t m = n + (std::uint64_t{1} << k);
+        const auto width = static_cast<unsigned>(std::bit_width(m));
+        append(0, width - 1 - k);
+        append(1, 1);
+        append(m & ((std::uint64_t{1} << (width - 1)) - 1), width - 1);
+    }
+};
+
+template <class Emit>
+void add_record(std::vector<std::uint64_t>& pool, const std::array<unsigned, f::class_count>& order,
+                std::uint32_t& word, std::uint32_t& bits, Emit emit) {
+    word = static_cast<std::uint32_t>(pool.size());
+    pool_sink sink{pool, order};
+    emit(sink);
+    bits = static_cast<std::uint32_t>(sink.bit);
+}
+
+// Copies a record into the writer, 32 bits at a time (bit_writer::put's limit).
+void put_record(bit_writer& w, const std::vector<std::uint64_t>& pool, std::uint32_t word, std::uint32_t bits) {
+    auto put_part = [&w, &bits](std::uint64_t v) {
+        const unsigned n = bits < 32 ? bits : 32;
+        w.put(v & ((std::uint64_t{1} << n) - 1), n);
+        bits -= n;
+    };
+    while (bits > 0) {
+        const std::uint64_t v = pool[word++];
+        put_part(v);
+        if (bits > 0) put_part(v >> 32);
+    }
+}
+
+}  // namespace
+
+void shared_encoder::prepare(view state, std::optional<view> baseline_state, elapsed_time elapsed) {
+    assert(elapsed.tick_rate > 0);
+    state_ = state;
+    base_ = baseline_state;
+    elapsed_ = elapsed;
+    pool_.clear();
+    stats_sink stats;
+    base_to_state_.clear();
+    unchanged_.clear();
+    change_.clear();
+    std::vector<body_change> changes;  // by baseline index, only for prepare's two passes
+    if (base_) {
+        const view base = *base_;
+        base_to_state_.resize(base.size(), none);
+        unchanged_.resize(base.size(), 0);
+        change_.resize(base.size());
+        changes.resize(base.size());
+        std::size_t j = 0;
+        for (std::size_t i = 0; i < base.size(); ++i) {
+            while (j < state.size() && state[j].id < base[i].id) ++j;
+            if (j == state.size() || state[j].id != base[i].id) continue;
+            base_to_state_[i] = static_cast<std::uint32_t>(j);
+            changes[i] = diff(base[i], state[j], elapsed);
+            unchanged_[i] = changes[i].unchanged();
+            if (!unchanged_[i]) emit_change(stats, changes[i], state[j].owner);
+        }
+    }
+    for (const quantized_body& b : state) emit_added_fields(stats, b);
+    for (unsigned c = 0; c < f::class_count; ++c) order_[c] = stats.best_order(static_cast<f::code_class>(c));
+
+    // The records, with those orders (the gap classes' orders are chosen per client).
+    for (std::size_t i = 0; i < change_.size(); ++i) {
+        if (base_to_state_[i] == none || unchanged_[i]) continue;
+        const std::uint32_t owner = state[base_to_state_[i]].owner;
+        add_record(pool_, order_, change_[i].word, change_[i].bits,
+                   [&](pool_sink& s) { emit_change(s, changes[i], owner); });
+    }
+    added_.resize(state.size());
+    for (std::size_t i = 0; i < state.size(); ++i) {
+        add_record(pool_, order_, added_[i].word, added_[i].bits,
+                   [&](pool_sink& s) { emit_added_fields(s, state[i]); });
+    }
+}
+
+void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
+                            std::vector<std::uint8_t>& out) {
+    // The walk: baseline bodies removed, changed or unchanged; current bodies not in the
+    // baseline view are added. Both index lists follow id order, and so does base_to_state_.
+    touches_.clear();
+    added_indices_.clear();
+    std::size_t j = 0;
+    if (base_) {
+        std::uint64_t gap = 0;
+        for (const std::uint32_t b : baseline) {
+            const std::uint32_t s = base_to_state_[b];
+            if (s != none) {
+                while (j < current.size() && current[j] < s) added_indices_.push_back(current[j++]);
+            }
+            if (s == none || j == current.size() || current[j] != s) {
+                touches_.push_back({gap, b, true});  // gone from the world, or from the view
+                gap = 0;
+                continue;
+            }
+            ++j;
+            if (unchanged_[b]) {
+                ++gap;
+            } else {
+                touches_.push_back({gap, b, false});
+                gap = 0;
+            }
+        }
+    }
+    while (j < current.size()) added_indices_.push_back(current[j++]);
+
+    // This view's gap and id-gap orders.
+    stats_sink stats;
+    for (const touch& t : touches_) stats.code(f::gap, t.gap);
+    std::uint64_t next_id = 0;
+    for (const std::uint32_t i : added_indices_) {
+        stats.code(f::id_gap, state_[i].id - next_id);
+        next_id = std::uint64_t{state_[i].id} + 1;
+    }
+    std::array<unsigned, f::class_count> order = order_;
+    order[f::gap] = stats.best_order(f::gap);
+    order[f::id_gap] = stats.best_order(f::id_gap);
+
+    out.clear();
+    bit_writer w(out);
+    write_sink sink{w, order};
+    w.put(f::version, f::version_bits);
+    w.put(base_ ? 1 : 0, 1);
+    if (base_) w.put_golomb(baseline.size(), 0);
+    const view state = state_;
+    w.put(checksum_of(current.size(), [&](std::size_t i) -> const quantized_body& { return state[current[i]]; }),
+          f::checksum_bits);
+    for (unsigned c = 0; c < f::class_count; ++c) w.put_golomb(order[c], 0);
+    if (base_) {
+        w.put_golomb(touches_.size(), 0);
+        for (const touch& t : touches_) {
+            sink.code(f::gap, t.gap);
+            if (t.removed) {
+                emit_removed(sink);
+            } else {
+                put_record(w, pool_, change_[t.base_index].word, change_[t.base_index].bits);
+            }
+        }
+    }
+    w.put_golomb(added_indices_.size(), 0);
+    next_id = 0;
+    for (const std::uint32_t i : added_indices_) {
+        sink.code(f::id_gap, state_[i].id - next_id);
+        next_id = std::uint64_t{state_[i].id} + 1;
+        put_record(w, pool_, added_[i].word, added_[i].bits);
+    }
+    w.flush();
+}
+
+}  // namespace arena::protocol::delta
