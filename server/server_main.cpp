@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
     app.add_option("--reconnect-grace", options.game.reconnect_grace_s,
                    "seconds a dropped player's body waits for it to come back with the same token (default 10)")
         ->check(cli::finite_non_negative);
+    // Interest management is on by default: 100 m is a quarter of the asteroids world's side,
+    // a generous screen. 0 sends every body to every client.
+    options.game.view_radius = 100;
     app.add_option("--view-radius", options.game.view_radius,
                    "m: each client's snapshots hold its body and the bodies this near it; 0 = the whole world")
         ->check(cli::finite_non_negative)

@@ -1,5 +1,6 @@
 #include "protocol/delta/shared_encoder.hpp"
 
+#include <algorithm>
 #include <cassert>
 
 #include "protocol/delta/bits.hpp"
@@ -72,38 +73,42 @@ void shared_encoder::prepare(view state, std::optional<view> baseline_state, ela
     base_to_state_.clear();
     unchanged_.clear();
     change_.clear();
-    std::vector<body_change> changes;  // by baseline index, only for prepare's two passes
     if (base_) {
         const view base = *base_;
         base_to_state_.resize(base.size(), none);
         unchanged_.resize(base.size(), 0);
         change_.resize(base.size());
-        changes.resize(base.size());
         std::size_t j = 0;
         for (std::size_t i = 0; i < base.size(); ++i) {
             while (j < state.size() && state[j].id < base[i].id) ++j;
             if (j == state.size() || state[j].id != base[i].id) continue;
             base_to_state_[i] = static_cast<std::uint32_t>(j);
-            changes[i] = diff(base[i], state[j], elapsed);
-            unchanged_[i] = changes[i].unchanged();
-            if (!unchanged_[i]) emit_change(stats, changes[i], state[j].owner);
+            const body_change d = diff(base[i], state[j], elapsed);
+            unchanged_[i] = d.unchanged();
+            if (!unchanged_[i]) emit_change(stats, d, state[j].owner);
         }
     }
-    for (const quantized_body& b : state) emit_added_fields(stats, b);
+    // Added bodies are few in a delta: a sample of the state sets their classes' orders.
+    const std::size_t stride = base_ ? std::max<std::size_t>(1, state.size() / 256) : 1;
+    for (std::size_t i = 0; i < state.size(); i += stride) emit_added_fields(stats, state[i]);
     for (unsigned c = 0; c < f::class_count; ++c) order_[c] = stats.best_order(static_cast<f::code_class>(c));
+    added_.assign(state.size(), record{});
+}
 
-    // The records, with those orders (the gap classes' orders are chosen per client).
-    for (std::size_t i = 0; i < change_.size(); ++i) {
-        if (base_to_state_[i] == none || unchanged_[i]) continue;
-        const std::uint32_t owner = state[base_to_state_[i]].owner;
-        add_record(pool_, order_, change_[i].word, change_[i].bits,
-                   [&](pool_sink& s) { emit_change(s, changes[i], owner); });
+const shared_encoder::record& shared_encoder::change_record(std::uint32_t b) {
+    record& r = change_[b];
+    if (r.bits == none) {
+        const quantized_body& now = state_[base_to_state_[b]];
+        const body_change d = diff((*base_)[b], now, elapsed_);
+        add_record(pool_, order_, r.word, r.bits, [&](pool_sink& s) { emit_change(s, d, now.owner); });
     }
-    added_.resize(state.size());
-    for (std::size_t i = 0; i < state.size(); ++i) {
-        add_record(pool_, order_, added_[i].word, added_[i].bits,
-                   [&](pool_sink& s) { emit_added_fields(s, state[i]); });
-    }
+    return r;
+}
+
+const shared_encoder::record& shared_encoder::added_record(std::uint32_t i) {
+    record& r = added_[i];
+    if (r.bits == none) add_record(pool_, order_, r.word, r.bits, [&](pool_sink& s) { emit_added_fields(s, state_[i]); });
+    return r;
 }
 
 void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
@@ -165,7 +170,8 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
             if (t.removed) {
                 emit_removed(sink);
             } else {
-                put_record(w, pool_, change_[t.base_index].word, change_[t.base_index].bits);
+                const record& r = change_record(t.base_index);
+                put_record(w, pool_, r.word, r.bits);
             }
         }
     }
@@ -174,7 +180,8 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
     for (const std::uint32_t i : added_indices_) {
         sink.code(f::id_gap, state_[i].id - next_id);
         next_id = std::uint64_t{state_[i].id} + 1;
-        put_record(w, pool_, added_[i].word, added_[i].bits);
+        const record& r = added_record(i);
+        put_record(w, pool_, r.word, r.bits);
     }
     w.flush();
 }

@@ -36,11 +36,15 @@ public:
     [[nodiscard]] bool has_baseline() const noexcept { return base_.has_value(); }
 
 private:
-    // A run of bits in pool_, starting at a word boundary.
+    // A run of bits in pool_, starting at a word boundary; built on first use, since a tick's
+    // clients together touch only the bodies near them (bits == none: not built yet).
     struct record {
         std::uint32_t word = 0;
-        std::uint32_t bits = 0;
+        std::uint32_t bits = none;
     };
+    static constexpr std::uint32_t none = ~0u;
+    const record& change_record(std::uint32_t base_index);
+    const record& added_record(std::uint32_t state_index);
     // One baseline body in a client's walk: removed, or changed (its record), after `gap`
     // unchanged ones.
     struct touch {
@@ -48,7 +52,6 @@ private:
         std::uint32_t base_index = 0;
         bool removed = false;
     };
-    static constexpr std::uint32_t none = ~0u;
 
     view state_;
     std::optional<view> base_;

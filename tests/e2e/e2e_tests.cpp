@@ -109,7 +109,7 @@ void check_misbehaving_share(const std::string& mode, const std::string& expecte
 
 TEST_CASE("bots join, get snapshots at the snapshot rate and predict their own body", "[e2e]") {
     temp_dir dir;
-    server s(dir);
+    server s(dir, {"--view-radius", "0"});  // the whole world, as before interest management
     // Full BodyState snapshots, the simple client's path: the exact floats, so the
     // prediction can be bit-exact (delta snapshots carry quantised state: the next test).
     const bots_run r = run_bots(dir, s.port,
@@ -202,18 +202,21 @@ TEST_CASE("bots closing mid-frame leave; the others keep their snapshot rate", "
 }
 
 TEST_CASE("slow readers are dropped and do not slow the others down", "[e2e]") {
-    // 600 rocks make each snapshot about 20 KB, and a 64 KiB send buffer per client on the
-    // server: a slow reader's socket fills within a second, then --stall-timeout drops it.
+    // 600 rocks make each full snapshot of the whole world about 20 KB (BodyState snapshots,
+    // no view radius: deltas of a view would take minutes), and a 64 KiB send buffer per
+    // client on the server: a slow reader's socket fills within a second, then
+    // --stall-timeout drops it.
     // The slow readers never read, so they cannot know why: the server's stats say.
     temp_dir dir;
     const std::string config = dir.file("crowded.json");
     std::ofstream(config) << R"({"preset": "asteroids", "size": [1500, 1500], "rocks": {"count": 600}})";
     const std::string stats = dir.file("stats.json");
     {
-        server s(dir, {"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--stats-json", stats});
+        server s(dir, {"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--stats-json", stats,
+                       "--view-radius", "0"});
         const bots_run r = run_bots(dir, s.port,
                                     {"--bots", "20", "--duration", "5", "--seed", "8", "--misbehave", "slow-reader",
-                                     "--misbehave-share", "0.25", "--quiet"});
+                                     "--misbehave-share", "0.25", "--quiet", "--full-snapshots"});
         CHECK(r.exit_code == 0);
         CHECK(r.report.at("misbehaving") == 5);
         CHECK(r.report.at("ended_early") == 0);

@@ -166,11 +166,12 @@ TEST_CASE("garbage, an oversize length and a NaN input close only that client", 
 }
 
 TEST_CASE("a client that never reads keeps the server's memory bounded and is dropped", "[net][e2e]") {
-    // 1000 rocks: each snapshot is about 32 KB; with a 4 KiB receive buffer on the sleeper and
-    // a 64 KiB send buffer on the server, an unread socket fills within a second.
+    // 1000 rocks: each snapshot of the whole world (--view-radius 0) is about 32 KB; with a
+    // 4 KiB receive buffer on the sleeper and a 64 KiB send buffer on the server, an unread
+    // socket fills within a second.
     const std::string config = temp_path("big.json");
     std::ofstream(config) << R"({"preset": "asteroids", "size": [2000, 2000], "rocks": {"count": 1000}})";
-    server_process server({"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536"});
+    server_process server({"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--view-radius", "0"});
     joined_client good(server.port(), "good");
     joined_client sleeper(server.port(), "sleeper", 4096);  // never reads again
     count_snapshots(good.client, 500ms);
