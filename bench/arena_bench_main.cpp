@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
             bench_bandwidth(256, radius, false, ticks);
             bench_bandwidth(256, radius, true, ticks);
         }
-        bench_bandwidth(1000, 100.0f, true, quick ? 150 : 600);
+        bench_bandwidth(1000, 50.0f, true, quick ? 150 : 600);
     }
     return 0;
 }

@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # make bench-e2e: arena-server pinned to CPU 1 and arena-bots to CPU 0, 64, 256 and 512 bots
-# for 20 s each at 60 Hz ticks and 20 Hz snapshots; then the Colyseus peer and Arena under the
-# same 200-client load in the same minute. Prints one markdown table per part.
-# Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), COLYSEUS (../shared/peers/colyseus).
+# for 20 s each at 60 Hz ticks and 20 Hz snapshots (the server's defaults: delta snapshots,
+# 100 m view radius); 256 bots on the old path (full BodyState snapshots of the whole world)
+# for the bandwidth comparison; 1000 bots with a view radius (issue 7); then the Colyseus peer
+# and Arena under the same 200-client load in the same minute. One markdown table per part.
+# Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), E2E_LARGE (1000), E2E_LARGE_RADIUS (50),
+#      COLYSEUS (../shared/peers/colyseus).
 set -euo pipefail
 bin=${1:-build/bin}
 here=$(cd "$(dirname "$0")" && pwd)
 counts=${E2E_BOTS:-64 256 512}
+large=${E2E_LARGE:-1000}
+large_radius=${E2E_LARGE_RADIUS:-50}
 seconds=${E2E_SECONDS:-20}
 colyseus=${COLYSEUS:-$here/../../shared/peers/colyseus}
 work=$(mktemp -d /tmp/arena-bench-e2e.XXXXXX)
@@ -14,11 +19,13 @@ trap 'rm -rf "$work"' EXIT
 pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 
-# run_arena N LABEL: one run; leaves $work/LABEL.server.json and $work/LABEL.bots.json.
+# run_arena N LABEL [SERVER_FLAGS] [BOTS_FLAGS]: one run; leaves $work/LABEL.server.json and
+# $work/LABEL.bots.json. The flag lists are single words split on spaces.
 run_arena() {
   local n=$1 label=$2
+  local -a server_flags=(${3:-}) bots_flags=(${4:-})
   "${pin_server[@]}" "$bin/arena-server" --port 0 --max-players "$n" --max-connections $((2 * n + 16)) \
-    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 \
+    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 "${server_flags[@]}" \
     --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   for _ in $(seq 100); do
@@ -26,7 +33,7 @@ run_arena() {
   done
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   "${pin_bots[@]}" "$bin/arena-bots" --port "$port" --bots "$n" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 || true
+    --behavior mixed --seed 1 --quiet "${bots_flags[@]}" --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 || true
   # Stopped as soon as the bots are done, so that its CPU per second covers the load only.
   kill -TERM "$server"
   wait "$server" || true
@@ -38,9 +45,18 @@ for n in $counts; do
   echo "running $n bots..." >&2
   run_arena "$n" "arena-$n"
 done
-python3 "$here/e2e_table.py" arena "$work" $counts
+echo "running 256 bots on full snapshots of the whole world..." >&2
+run_arena 256 arena-256-full "--view-radius 0" "--full-snapshots"
+echo "running $large bots, view radius $large_radius m..." >&2
+run_arena "$large" "arena-$large-r$large_radius" "--view-radius $large_radius"
+labels=()
+for n in $counts; do labels+=("arena-$n"); done
+labels+=(arena-256-full "arena-$large-r$large_radius")
+python3 "$here/e2e_table.py" arena "$work" "${labels[@]}"
 echo
 echo "The window counts from the server's start to SIGTERM right after the bots' last second, joins included."
+echo "Default runs: delta snapshots and a 100 m view radius; 'full': BodyState snapshots of every body (the path"
+echo "for clients without delta support); bytes per body are the bots' received frames over the bodies they held."
 
 if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
   echo
@@ -48,7 +64,8 @@ if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
   echo
   echo "running Colyseus with 200 clients..." >&2
   "$colyseus/run.sh" 200 "$seconds" > "$work/colyseus.json" 2> "$work/colyseus.log" || { tail -20 "$work/colyseus.log" >&2; }
-  echo "running Arena with 200 bots..." >&2
+  echo "running Arena with 200 bots (whole world, then the default 100 m view)..." >&2
+  run_arena 200 arena-200-world "--view-radius 0"
   run_arena 200 arena-200
   python3 "$here/e2e_table.py" colyseus "$work"
 else

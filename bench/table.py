@@ -26,6 +26,42 @@ def ok(flag):
     return "**met**" if flag else "**not met**"
 
 
+def bandwidth_table(rows):
+    """Issue 7: full against delta snapshots per (players, view radius), from the same run."""
+    bw = [r for r in rows if r["bench"] == "bandwidth"]
+    if not bw:
+        return
+    print()
+    print("Bandwidth (issue 7): every player moving (thrust and turn re-chosen every 0.5 s), each client")
+    print("acknowledging a snapshot 100 ms after it arrived; bytes are whole frames (length prefix and FlatBuffers")
+    print("included), \"codec\" the delta bytes alone; tick = world step + that tick's share of the snapshots.")
+    print()
+    print("| players (bodies) | view | snapshots | bodies in view | bytes per snapshot | bytes per body (codec) | bytes per client per s | full / delta | tick p50 / p99 ms | decode errors |")
+    print("|---|---|---|---:|---:|---|---:|---|---|---:|")
+    full = {(r["players"], r["view_radius"]): r for r in bw if r["mode"] == "full"}
+    whole = {r["players"]: r for r in bw if r["mode"] == "full" and r["view_radius"] == 0}
+    for r in bw:
+        view = "whole world" if r["view_radius"] == 0 else "%.0f m" % r["view_radius"]
+        codec = " (%.2f; ≤ 4: %s)" % (r["payload_bytes_per_body"], ok(r["payload_bytes_per_body"] <= 4)) if r["mode"] == "delta" else ""
+        ratio = ""
+        if r["mode"] == "delta":
+            parts = []
+            f = full.get((r["players"], r["view_radius"]))
+            if f:
+                parts.append("%.1f× same view" % (f["bytes_per_snapshot"] / r["bytes_per_snapshot"]))
+            w = whole.get(r["players"])
+            if w and r["view_radius"] != 0:
+                x = w["bytes_per_snapshot"] / r["bytes_per_snapshot"]
+                parts.append("%.1f× whole-world full; ≥ 8×: %s" % (x, ok(x >= 8)) if r["players"] == 256 else "%.1f× whole-world full" % x)
+            elif f and r["players"] == 256:
+                x = f["bytes_per_snapshot"] / r["bytes_per_snapshot"]
+                parts[-1] += "; ≥ 8×: %s" % ok(x >= 8)
+            ratio = ", ".join(parts)
+        print("| %d (%d) | %s | %s | %.1f | %.0f | %.2f%s | %.0f | %s | %.3f / %.3f | %d |" % (
+            r["players"], r["bodies"], view, r["mode"], r["bodies_per_snapshot"], r["bytes_per_snapshot"], r["bytes_per_body"],
+            codec, r["bytes_per_client_per_s"], ratio, r["tick_ms_median"], r["tick_ms_p99"], r["errors"]))
+
+
 def main(argv):
     notes, paths = [], []
     i = 0
@@ -102,6 +138,7 @@ def main(argv):
                 best["engine"], best["version"], len(theirs), best["overlaps_last_step"], best["mean_speed"], n,
                 best["ms_per_step_median"], best["ms_per_step_p90"], ratio))
     print("\n".join(out))
+    bandwidth_table(rows)
     for note in notes:
         print()
         print(note)
