@@ -5,6 +5,7 @@
 // 2·log2(n / 2^k) + k + 1 bits, so small values are short and no value is impossible).
 // The reader takes untrusted bytes: reading past the end or an over-long code sets a sticky
 // failure flag and returns 0, so a decoder checks once per section, never crashes.
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -29,9 +30,14 @@ inline constexpr unsigned max_golomb_order = 24;
   return 2 * width - 1 - k;
 }
 
+// Appends to a vector. The vector is grown ahead and written through a cursor (an insert per
+// word was a visible share of the server's encoding); flush() must end every use, as it trims
+// the vector to the bytes written.
 class bit_writer {
  public:
-  explicit bit_writer(std::vector<std::uint8_t>& out) : out_(out) {}
+  explicit bit_writer(std::vector<std::uint8_t>& out) : out_(out), pos_(out.size()) {
+    out_.resize(pos_ + std::max<std::size_t>(64, out_.capacity() - pos_));
+  }
 
   // n ≤ 32 bits of v (higher bits of v must be 0). Fewer than 32 bits wait in the
   // accumulator between calls; whole 32-bit words go out at once.
@@ -39,9 +45,13 @@ class bit_writer {
     acc_ |= v << used_;
     used_ += n;
     if (used_ >= 32) {
-      const std::uint8_t word[4] = {static_cast<std::uint8_t>(acc_), static_cast<std::uint8_t>(acc_ >> 8),
-                                    static_cast<std::uint8_t>(acc_ >> 16), static_cast<std::uint8_t>(acc_ >> 24)};
-      out_.insert(out_.end(), word, word + 4);
+      if (pos_ + 4 > out_.size()) out_.resize(2 * out_.size());
+      std::uint8_t* at = out_.data() + pos_;
+      at[0] = static_cast<std::uint8_t>(acc_);
+      at[1] = static_cast<std::uint8_t>(acc_ >> 8);
+      at[2] = static_cast<std::uint8_t>(acc_ >> 16);
+      at[3] = static_cast<std::uint8_t>(acc_ >> 24);
+      pos_ += 4;
       acc_ >>= 32;
       used_ -= 32;
     }
@@ -70,12 +80,15 @@ class bit_writer {
     put(1, 1);
     put_wide(rest, width - 1);
   }
-  // Writes the bits still waiting, padding the last byte with zero bits.
+  // Writes the bits still waiting, padding the last byte with zero bits, and trims the
+  // vector to what was written.
   void flush() {
+    out_.resize(pos_);
     for (; used_ > 0; used_ = used_ > 8 ? used_ - 8 : 0) {
       out_.push_back(static_cast<std::uint8_t>(acc_));
       acc_ >>= 8;
     }
+    pos_ = out_.size();
     acc_ = 0;
   }
 
@@ -83,6 +96,7 @@ class bit_writer {
   std::vector<std::uint8_t>& out_;
   std::uint64_t acc_ = 0;
   unsigned used_ = 0;  // < 32 between calls
+  std::size_t pos_;    // bytes written (out_ is larger until flush())
 };
 
 class bit_reader {

@@ -42,36 +42,40 @@ inline body_change diff(const quantized_body& b, const quantized_body& c, elapse
   return d;
 }
 
+// How many values of each bit width (0..64) one class has.
+using width_counts = std::array<std::uint64_t, 65>;
+
+// The order that makes the class shortest, estimating each value by the smallest of its
+// width (the decoder does not care how the order was chosen).
+[[nodiscard]] inline unsigned best_order(const width_counts& widths) noexcept {
+  // Only widths present matter, and no order beyond the widest value can be shorter.
+  unsigned widest = 0;
+  for (unsigned w = 0; w < 65; ++w) {
+    if (widths[w] != 0) widest = w;
+  }
+  unsigned best = 0;
+  std::uint64_t best_bits = UINT64_MAX;
+  for (unsigned k = 0; k <= widest && k <= max_golomb_order; ++k) {
+    std::uint64_t bits = 0;
+    for (unsigned w = 0; w <= widest; ++w) {
+      if (widths[w] == 0) continue;
+      const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
+      bits += widths[w] * golomb_bits(n, k);
+    }
+    if (bits < best_bits) {
+      best_bits = bits;
+      best = k;
+    }
+  }
+  return best;
+}
+
 // First pass: how many values of each bit width each class has.
 struct stats_sink {
-  std::array<std::array<std::uint64_t, 65>, f::class_count> widths{};
+  std::array<width_counts, f::class_count> widths{};
   void code(f::code_class c, std::uint64_t n) noexcept { ++widths[c][std::bit_width(n)]; }
   void raw(std::uint64_t, unsigned) noexcept {}
-
-  // The order that makes the class shortest, estimating each value by the smallest of its
-  // width (the decoder does not care how the order was chosen).
-  [[nodiscard]] unsigned best_order(f::code_class c) const noexcept {
-    // Only widths present matter, and no order beyond the widest value can be shorter.
-    unsigned widest = 0;
-    for (unsigned w = 0; w < 65; ++w) {
-      if (widths[c][w] != 0) widest = w;
-    }
-    unsigned best = 0;
-    std::uint64_t best_bits = UINT64_MAX;
-    for (unsigned k = 0; k <= widest && k <= max_golomb_order; ++k) {
-      std::uint64_t bits = 0;
-      for (unsigned w = 0; w <= widest; ++w) {
-        if (widths[c][w] == 0) continue;
-        const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
-        bits += widths[c][w] * golomb_bits(n, k);
-      }
-      if (bits < best_bits) {
-        best_bits = bits;
-        best = k;
-      }
-    }
-    return best;
-  }
+  [[nodiscard]] unsigned best_order(f::code_class c) const noexcept { return records::best_order(widths[c]); }
 };
 
 // Second pass: the bits.

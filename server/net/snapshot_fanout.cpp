@@ -61,7 +61,7 @@ void snapshot_fanout::find_view(uint32_t body_id) {
         index_.build(bodies, world_->config(), config_.view_radius);
         index_ready_ = true;
     }
-    index_.query(bodies, own->position, view_);
+    index_.query(own->position, view_);
 }
 
 delta::shared_encoder& snapshot_fanout::encoder_for(uint32_t baseline_tick) {

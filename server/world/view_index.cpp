@@ -24,21 +24,28 @@ void view_index::build(std::span<const body> bodies, const world_config& config,
         for (uint32_t r = 0; r < scratch_.run_cell.size(); ++r) run_of_cell_[scratch_.run_cell[r]] = r;
     }
     seen_.assign((bodies.size() + 63) / 64, 0);
+    // What a query reads of each body, in cell order: contiguous per cell, 16 bytes a body
+    // instead of a cache miss into the body array for each one.
+    packed_.resize(bodies.size());
+    for (size_t k = 0; k < bodies.size(); ++k) {
+        const body& b = bodies[scratch_.sorted[k]];
+        packed_[k] = {b.position, b.radius, scratch_.sorted[k]};
+    }
 }
 
-void view_index::visit_cell(std::span<const body> bodies, uint32_t cx, uint32_t cy, bool inside, vec2 centre,
+void view_index::visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre,
                             std::vector<uint32_t>& out) const {
     const uint32_t cell = cy * grid_.nx + cx;
     const uint32_t run = run_of_cell_.empty() ? find_run(scratch_, cell) : run_of_cell_[cell];
     if (run == no_run) return;
     if (inside) {
-        for (uint32_t k = scratch_.run_start[run]; k < scratch_.run_start[run + 1]; ++k) out.push_back(scratch_.sorted[k]);
+        for (uint32_t k = scratch_.run_start[run]; k < scratch_.run_start[run + 1]; ++k) out.push_back(packed_[k].index);
         return;
     }
     for (uint32_t k = scratch_.run_start[run]; k < scratch_.run_start[run + 1]; ++k) {
-        const uint32_t i = scratch_.sorted[k];
-        const real limit = radius_ + bodies[i].radius;
-        if (displacement(centre, bodies[i].position, config_).squaredNorm() <= limit * limit) out.push_back(i);
+        const packed_body& p = packed_[k];
+        const real limit = radius_ + p.radius;
+        if (displacement(centre, p.position, config_).squaredNorm() <= limit * limit) out.push_back(p.index);
     }
 }
 
@@ -72,7 +79,7 @@ uint32_t wrapped(int64_t c, uint32_t cells) {
 
 }  // namespace
 
-void view_index::query(std::span<const body> bodies, vec2 centre, std::vector<uint32_t>& out) {
+void view_index::query(vec2 centre, std::vector<uint32_t>& out) {
     const size_t first_new = out.size();
     const bool wraps = grid_.wraps;
     const cell_span xs = covered(centre.x() - reach_, centre.x() + reach_, grid_.origin.x(), grid_.cell.x(), grid_.nx, wraps);
@@ -93,7 +100,7 @@ void view_index::query(std::span<const body> bodies, vec2 centre, std::vector<ui
     const uint32_t x_start = wrapped(xs.first, grid_.nx), y_start = wrapped(ys.first, grid_.ny);
     for (uint32_t j = 0, cy = y_start; j < ys.count; ++j, cy = cy + 1 == grid_.ny ? 0 : cy + 1) {
         for (uint32_t i = 0, cx = x_start; i < xs.count; ++i, cx = cx + 1 == grid_.nx ? 0 : cx + 1)
-            visit_cell(bodies, cx, cy, inside(xs.first + i, ys.first + j, cx, cy), centre, out);
+            visit_cell(cx, cy, inside(xs.first + i, ys.first + j, cx, cy), centre, out);
     }
     // Cells come in grid order, not index order, and the view must be sorted by id. A large
     // view is put in order through a bitmap of the bodies (a pass over N/64 words), a small one

@@ -18,13 +18,13 @@ public:
 
     // Appends to `out`, in increasing index order (the bodies' id order), every body whose
     // circle comes within the radius of `centre`: |centre − position| ≤ radius + body radius,
-    // the shortest way round in a wrapping world. `bodies` must be the span given to build().
+    // the shortest way round in a wrapping world, as they were when build() indexed them.
     // Not const: it reuses scratch space (one index, one thread).
-    void query(std::span<const body> bodies, vec2 centre, std::vector<uint32_t>& out);
+    void query(vec2 centre, std::vector<uint32_t>& out);
 
 private:
     // `inside`: the whole cell lies within the radius, so every body in it is seen.
-    void visit_cell(std::span<const body> bodies, uint32_t cx, uint32_t cy, bool inside, vec2 centre,
+    void visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre,
                     std::vector<uint32_t>& out) const;
 
     world_config config_;
@@ -35,6 +35,12 @@ private:
     static constexpr uint64_t max_table_cells = 1u << 20;
     std::vector<uint32_t> run_of_cell_;  // cell → its run in scratch_, or no_run; empty: too many cells
     std::vector<uint64_t> seen_;         // one bit per body, all zero between queries
+    struct packed_body {
+        vec2 position;
+        real radius;
+        uint32_t index;  // in the body span
+    };
+    std::vector<packed_body> packed_;    // in scratch_.sorted's order (by cell)
 };
 
 }  // namespace arena::world

@@ -197,12 +197,13 @@ TEST_CASE("Hand-made streams earn their reasons", "[protocol][delta]") {
     CHECK(refusal(out, std::nullopt) == "accepted");
     // Ids can only grow (gaps are unsigned), so "out of order" means a duplicate of a kept id.
     out.clear();
+    ad::bit_writer again(out);  // a writer ends with its flush()
     const std::vector<ad::quantized_body> base{{6, 0, 0, 0, 0, 0, 0, 0}};
-    put_header(w, base.size(), 0);
-    w.put_golomb(0, 0);  // nothing touched: body 6 kept
-    w.put_golomb(1, 0);
-    put_added(w, 6);     // id 6 again
-    w.flush();
+    put_header(again, base.size(), 0);
+    again.put_golomb(0, 0);  // nothing touched: body 6 kept
+    again.put_golomb(1, 0);
+    put_added(again, 6);     // id 6 again
+    again.flush();
     CHECK(refusal(out, ad::view(base)) == "added body id already in the view");
   }
   SECTION("an id beyond 2^32 − 1") {
@@ -247,10 +248,11 @@ TEST_CASE("Hand-made streams earn their reasons", "[protocol][delta]") {
     w.flush();
     CHECK(refusal(out, ad::view(base)) == "more touched bodies than the baseline has");
     out.clear();
-    put_header(w, base.size(), 0);
-    w.put_golomb(1, 0);
-    w.put_golomb(1, 0);  // gap 1: the touched body would be the second of one
-    w.flush();
+    ad::bit_writer again(out);  // a writer ends with its flush()
+    put_header(again, base.size(), 0);
+    again.put_golomb(1, 0);
+    again.put_golomb(1, 0);  // gap 1: the touched body would be the second of one
+    again.flush();
     CHECK(refusal(out, ad::view(base)) == "touched body beyond the end of the baseline");
   }
   SECTION("a count over the limit, or more than the bytes can hold") {
@@ -260,9 +262,10 @@ TEST_CASE("Hand-made streams earn their reasons", "[protocol][delta]") {
     w.flush();
     CHECK(refusal(out, std::nullopt, {3, 60}, ad::decode_limits{999}) == "more bodies than the limit");
     out.clear();
-    put_header(w, std::nullopt, 0);
-    w.put_golomb(std::uint64_t{1} << 30, 0);  // a billion bodies in a few bytes
-    w.flush();
+    ad::bit_writer again(out);  // a writer ends with its flush()
+    put_header(again, std::nullopt, 0);
+    again.put_golomb(std::uint64_t{1} << 30, 0);  // a billion bodies in a few bytes
+    again.flush();
     CHECK(refusal(out, std::nullopt, {3, 60}, ad::decode_limits{0xffffffffu}) ==
           "added count larger than the bytes can hold");
   }
