@@ -9,7 +9,8 @@
 
 namespace arena::protocol::delta::format {
 
-inline constexpr std::uint64_t version = 1;  // 4 bits at the start of every encoding
+// 4 bits at the start of every encoding. 2: velocities in 1/32 m/s (1 had 1/256 m/s).
+inline constexpr std::uint64_t version = 2;
 inline constexpr unsigned version_bits = 4;
 inline constexpr unsigned checksum_bits = 32;
 
@@ -63,11 +64,14 @@ inline constexpr std::uint32_t max_predicted_ticks = 4095;
   return v0 * (k - 1) + vk * (k + 1);
 }
 
-// Position units (1/256 m) from velocity units (1/256 m/s): same scale, so only ÷ 2·rate.
+// Position units (1/256 m) from velocity units (1/32 m/s): × 8, ÷ 2·rate. |twice| < 2^44
+// (int32 velocities, k < 2^12), so the numerator stays under 2^47 < 2^51 (round_div's bound).
+inline constexpr std::int64_t position_units_per_velocity_unit = 8;
+static_assert(position_scale / velocity_scale == position_units_per_velocity_unit);
 [[nodiscard]] inline std::int64_t predict_displacement(std::int64_t v0, std::int64_t vk,
                                                           elapsed_time e) noexcept {
   const std::int64_t twice = trapezoid(v0, vk, e);
-  return twice == 0 ? 0 : round_div(twice, 2 * std::int64_t{e.tick_rate});
+  return twice == 0 ? 0 : round_div(twice * position_units_per_velocity_unit, 2 * std::int64_t{e.tick_rate});
 }
 
 // Angle units (2π/65536 rad) from angular velocity units (1/256 rad/s): × 256/(2π), as the

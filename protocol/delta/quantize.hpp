@@ -5,7 +5,7 @@
 //
 // Resolutions (README.md has the table) are chosen for worlds up to a few km:
 //   position          1/256 m      int32  range ±8 388 km   max error 1/512 m  (≈ 2 mm)
-//   velocity          1/256 m/s    int32  range ±8 388 km/s max error 1/512 m/s
+//   velocity          1/32 m/s     int32  range ±67 108 km/s max error 1/64 m/s (≈ 16 mm/s)
 //   angle             2π/65536 rad int16  the whole circle  max error π/65536 rad (≈ 4.8e-5)
 //   angular velocity  1/256 rad/s  int16  range ±128 rad/s  max error 1/512 rad/s
 // Rounding is to nearest, ties towards +∞, computed as floor(v + 0.5) on a double: exact and
@@ -33,7 +33,11 @@ struct quantized_body {
 
 // Units per SI unit.
 inline constexpr double position_scale = 256.0;          // per m
-inline constexpr double velocity_scale = 256.0;          // per m/s
+// Velocities are coarser than positions: positions are sent with their own residual, so a
+// velocity error only shifts a prediction by error × elapsed time (1/64 m/s × 0.15 s ≈ 2 mm,
+// a position unit), while each finer bit would cost two bits per moving body per snapshot.
+// 1/32 m/s instead of 1/256 saved 17 % of a thrusting player's bytes ("[size]" tests).
+inline constexpr double velocity_scale = 32.0;           // per m/s
 inline constexpr double angular_velocity_scale = 256.0;  // per rad/s
 // 2π/65536 rad per unit; written out (not computed with libm) so every compiler agrees.
 inline constexpr double pi = 3.14159265358979323846;

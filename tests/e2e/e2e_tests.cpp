@@ -173,7 +173,7 @@ TEST_CASE("bots decode delta snapshots of their view and acknowledge them", "[e2
     // about 50 bytes of FlatBuffers and length prefix, which bench/README.md counts too).
     CHECK(j.at("delta_payload_bytes_per_body").get<double>() <= 4.0);
     CHECK(j.at("bytes_per_body").get<double>() < 32.0);
-    // Prediction from quantised state (positions within 2 mm, velocities within 2 mm/s):
+    // Prediction from quantised state (positions within 2 mm, velocities within 16 mm/s):
     // no longer bit-exact, but the median error stays at the millimetre scale and the tail
     // is the full-snapshot test's.
     CHECK(figure(j, "prediction_error_m", "p50") < 0.01);

@@ -118,7 +118,8 @@ TEST_CASE("Bodies exactly as predicted cost about one bit; the codec uses the pr
   const auto bytes = ad::encode(view, ad::view(view), {3, 60});
   CHECK(bytes.size() < 16);  // a header and a handful of bits for 1000 bodies
   // A drifting body whose position moved by exactly v·t is also free: its residual is 0.
-  std::vector<ad::quantized_body> base{{1, 0, 0, 0, 256 * 60, -256 * 30, 0, 256}};
+  // Velocities in 1/32 m/s, positions in 1/256 m, angular velocity in 1/256 rad/s.
+  std::vector<ad::quantized_body> base{{1, 0, 0, 0, 32 * 60, -32 * 30, 0, 256}};
   std::vector<ad::quantized_body> cur = base;
   cur[0].x = 256 * 3;       // 60 m/s for 3 ticks at 60 Hz: 3 m
   cur[0].y = -256 * 3 / 2;  // −30 m/s: −1.5 m

@@ -33,7 +33,7 @@ double angle_distance(double a, double b) {
 
 }  // namespace
 
-TEST_CASE("Position and velocity errors stay within 1/512 (m, m/s) across a 10 km world",
+TEST_CASE("Position errors stay within 1/512 m and velocity errors within 1/64 m/s across a 10 km world",
           "[protocol][delta]") {
   ad::test::rng r(1);
   double worst_p = 0, worst_v = 0;
@@ -47,6 +47,7 @@ TEST_CASE("Position and velocity errors stay within 1/512 (m, m/s) across a 10 k
   CHECK(worst_p <= ad::max_position_error);
   CHECK(worst_v <= ad::max_velocity_error);
   CHECK(worst_p > 0.9 * ad::max_position_error);  // the bound is tight, not loose
+  CHECK(worst_v > 0.9 * ad::max_velocity_error);
 }
 
 TEST_CASE("Far positions keep the bound plus the float's own half ulp", "[protocol][delta]") {
@@ -104,7 +105,9 @@ TEST_CASE("Rounding is to nearest with ties towards +infinity", "[protocol][delt
   CHECK(ad::quantize_position(-1.5f / 256) == -1);
   CHECK(ad::quantize_position(std::nextafter(0.5f / 256, 0.0f)) == 0);
   CHECK(ad::quantize_position(-0.0f) == 0);
-  CHECK(ad::quantize_velocity(2.25f) == 576);
+  CHECK(ad::quantize_velocity(2.25f) == 72);  // 1/32 m/s
+  CHECK(ad::quantize_velocity(0.5f / 32) == 1);
+  CHECK(ad::quantize_velocity(-0.5f / 32) == 0);
   CHECK(ad::quantize_angular_velocity(-0.5f / 256) == 0);
 }
 
