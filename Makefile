@@ -46,10 +46,11 @@ test: build lint-docker
 	$(MAKE) fuzz
 
 # libFuzzer (clang++-14, with ASan and UBSan) on the frame reader and message handling, the
-# replay-file reader and the config loader, each for FUZZ_SECONDS from tests/fuzz/corpus/.
+# replay-file reader, the config loader and the delta decoder, each for FUZZ_SECONDS from
+# tests/fuzz/corpus/.
 # A crash stops the run; its input is saved under build-fuzz/crashes/.
 FUZZ_BUILD ?= build-fuzz
-FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay
+FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta
 ifdef CI
 FUZZ_SECONDS ?= 60
 else
