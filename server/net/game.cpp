@@ -197,13 +197,17 @@ void game::send_snapshots() {
         if ((p.snapshots.delta ? id % interval : 0) != phase) continue;
         const uint32_t ack = p.inputs.last_consumed_sequence();
         if (p.snapshots.delta) {
-            p.who->send_snapshot_frame(fanout_.delta_frame(p.snapshots, p.body_id, ack));
+            const auto frame = fanout_.delta_frame(p.snapshots, p.body_id, ack);
+            counters_.snapshot_bytes = frame.size();
+            p.who->send_snapshot_frame(frame);
         } else if (fanout_.shared_full_frame()) {
             const protocol::snapshot_encoder& shared = fanout_.shared_frame();
             counters_.snapshot_bytes = shared.frame().size();
             p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
         } else {
-            p.who->send_snapshot_frame(fanout_.full_frame(p.body_id, ack));
+            const auto frame = fanout_.full_frame(p.body_id, ack);
+            counters_.snapshot_bytes = frame.size();
+            p.who->send_snapshot_frame(frame);
         }
         ++counters_.snapshots_sent;
     }
