@@ -9,6 +9,7 @@
 
 #include "bench/timing.hpp"
 #include "protocol/snapshot.hpp"
+#include "server/net/body_state.hpp"
 #include "server/replay/header.hpp"
 #include "server/replay/recorder.hpp"
 #include "server/replay/replayer.hpp"
@@ -101,12 +102,10 @@ void bench_snapshot(uint32_t bodies, uint32_t clients, int samples) {
     for (int k = 0; k < 10; ++k) w.step({});
     std::vector<protocol::BodyState> states;
     protocol::snapshot_encoder encoder;
-    // As game::broadcast_snapshot does it: world bodies → BodyState, then one build.
+    // As snapshot_fanout::shared_frame does it: world bodies → BodyState, then one build.
     auto build = [&] {
         states.clear();
-        for (const world::body& b : w.bodies())
-            states.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle,
-                                b.angular_velocity);
+        for (const world::body& b : w.bodies()) states.push_back(net::body_state(b));
         encoder.build(w.tick(), states);
     };
     const stats sb = time_samples(10, samples, build);

@@ -196,20 +196,17 @@ void game::send_snapshots() {
         if (p.body_id == 0 || !p.who) continue;
         if ((p.snapshots.delta ? id % interval : 0) != phase) continue;
         const uint32_t ack = p.inputs.last_consumed_sequence();
-        if (p.snapshots.delta) {
-            const auto frame = fanout_.delta_frame(p.snapshots, p.body_id, ack);
-            counters_.snapshot_bytes = frame.size();
-            p.who->send_snapshot_frame(frame);
-        } else if (fanout_.shared_full_frame()) {
+        ++counters_.snapshots_sent;
+        if (!p.snapshots.delta && fanout_.shared_full_frame()) {
             const protocol::snapshot_encoder& shared = fanout_.shared_frame();
             counters_.snapshot_bytes = shared.frame().size();
             p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
-        } else {
-            const auto frame = fanout_.full_frame(p.body_id, ack);
-            counters_.snapshot_bytes = frame.size();
-            p.who->send_snapshot_frame(frame);
+            continue;
         }
-        ++counters_.snapshots_sent;
+        const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack)
+                                             : fanout_.full_frame(p.body_id, ack);
+        counters_.snapshot_bytes = frame.size();
+        p.who->send_snapshot_frame(frame);
     }
 }
 

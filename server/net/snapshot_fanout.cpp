@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "server/net/body_state.hpp"
+
 namespace arena::net {
 
 namespace delta = protocol::delta;
@@ -27,10 +29,7 @@ const std::vector<delta::quantized_body>& snapshot_fanout::quantized() {
 const std::vector<protocol::BodyState>& snapshot_fanout::states() {
     if (!states_ready_) {
         states_.clear();
-        for (const world::body& b : world_->bodies()) {
-            states_.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(),
-                                 b.angle, b.angular_velocity);
-        }
+        for (const world::body& b : world_->bodies()) states_.push_back(body_state(b));
         states_ready_ = true;
     }
     return states_;

@@ -1,5 +1,7 @@
 #include "server/net/view_history.hpp"
 
+#include "server/net/body_state.hpp"
+
 namespace arena::net {
 
 namespace delta = protocol::delta;
@@ -11,11 +13,7 @@ const std::vector<delta::quantized_body>& quantized_history::record(uint32_t tic
     entry& e = entries_[ring_.slot(tick)];
     e.tick = tick;
     e.bodies.clear();  // keeps its capacity: no allocation once the world stops growing
-    for (const world::body& b : bodies) {
-        const protocol::BodyState state(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(),
-                                        b.velocity.y(), b.angle, b.angular_velocity);
-        e.bodies.push_back(delta::quantize(state));
-    }
+    for (const world::body& b : bodies) e.bodies.push_back(delta::quantize(body_state(b)));
     return e.bodies;
 }
 
