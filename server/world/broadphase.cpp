@@ -12,59 +12,26 @@ uint32_t cells_along(real extent, real target) {
     return n < 1 ? 1u : static_cast<uint32_t>(std::min<real>(n, 1 << 20));
 }
 
-uint32_t cell_coordinate(real offset, real cell, uint32_t count) {
-    const real c = std::floor(offset / cell);
-    if (!(c >= 0)) return 0;  // also catches NaN, which must never get here
-    return std::min(static_cast<uint32_t>(std::min<real>(c, 1 << 30)), count - 1);
-}
-
 }  // namespace
-
-uint32_t cell_index(const grid& g, const vec2& p) {
-    const uint32_t cx = cell_coordinate(p.x() - g.origin.x(), g.cell.x(), g.nx);
-    const uint32_t cy = cell_coordinate(p.y() - g.origin.y(), g.cell.y(), g.ny);
-    return cy * g.nx + cx;
-}
 
 namespace {
 
-// The run of `cell`, moving `cursor` to it. The next row's targets grow with the current cell,
-// except that a cell's (+1, +1) may lie past the next cell's (−1, +1): the cursor steps back at
-// most two runs, so the whole walk stays O(runs).
-uint32_t find_run_from(const broadphase_scratch& s, uint32_t& cursor, uint32_t cell) {
-    const uint32_t runs = static_cast<uint32_t>(s.run_cell.size());
-    while (cursor > 0 && s.run_cell[cursor - 1] >= cell) --cursor;
-    while (cursor < runs && s.run_cell[cursor] < cell) ++cursor;
-    return cursor < runs && s.run_cell[cursor] == cell ? cursor : no_run;
+// Counting sort of s.items on the cell (the high half), stable, leaving s.cell_start as the
+// table of where each cell's bodies start (and end: the next cell's start).
+void sort_by_cell_with_table(broadphase_scratch& s, uint32_t cells) {
+    s.cell_start.assign(size_t{cells} + 1, 0);
+    for (uint64_t item : s.items) ++s.cell_start[item >> 32];
+    uint32_t sum = 0;
+    for (uint32_t c = 0; c < cells; ++c) s.cell_start[c] = sum += s.cell_start[c];  // now the ends
+    s.cell_start[cells] = sum;
+    // From the last body back, each cell's end moves down to its start: stable.
+    for (size_t k = s.items.size(); k-- > 0;) s.swap_items[--s.cell_start[s.items[k] >> 32]] = s.items[k];
+    s.items.swap(s.swap_items);
 }
 
-void add_pair(broadphase_scratch& s, uint32_t a, uint32_t b) {
-    s.pairs.emplace_back(std::min(a, b), std::max(a, b));
-}
-
-void all_pairs(size_t count, broadphase_scratch& s) {
-    for (uint32_t a = 0; a < count; ++a)
-        for (uint32_t b = a + 1; b < count; ++b) s.pairs.emplace_back(a, b);
-}
-
-}  // namespace
-
-// Sorts the bodies by cell (stable, so in index order within a cell) and lists the occupied
-// cells as runs. Work is O(bodies), whatever the number of cells: the asteroids preset has about
-// 28 cells a body, nearly all empty, and walking them (with a division per neighbour) was 90 %
-// of a 10k-body step.
-void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
-    const size_t n = bodies.size();
-    s.items.resize(n);
-    s.swap_items.resize(n);
-    uint32_t max_cell = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t c = cell_index(g, bodies[i].position);
-        max_cell = std::max(max_cell, c);
-        s.items[i] = static_cast<uint64_t>(c) << 32 | static_cast<uint32_t>(i);
-    }
-    // LSD radix sort on the cell (the high half), 11 bits a pass, only the passes the largest
-    // cell needs. Each pass is a stable counting sort, so equal cells keep index order.
+// LSD radix sort of s.items on the cell, 11 bits a pass, only the passes the largest cell needs.
+// Each pass is a stable counting sort, so equal cells keep index order.
+void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
     constexpr uint32_t digit_bits = 11, digits = 1u << digit_bits;
     s.count.resize(digits);
     for (uint32_t shift = 0; shift < 32 && (max_cell >> shift) != 0; shift += digit_bits) {
@@ -79,12 +46,44 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
         for (uint64_t item : s.items) s.swap_items[s.count[(item >> (32 + shift)) & (digits - 1)]++] = item;
         s.items.swap(s.swap_items);
     }
-    s.sorted.resize(n);
+}
+
+}  // namespace
+
+// Sorts the bodies by cell (stable, so in index order within a cell) and lists the occupied
+// cells as runs. Work is O(bodies), whatever the number of cells: the asteroids preset has about
+// 28 cells a body, nearly all empty, and walking them (with a division per neighbour) was 90 %
+// of a 10k-body step. A grid with a table (see broadphase.hpp) is sorted through it instead, and
+// the table then answers "which bodies are in this cell" with two loads.
+void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
+    const size_t n = bodies.size();
+    const uint64_t cells = g.cell_count();
+    const bool table = !g.wraps || cells <= max_table_cells(n);
+    s.items.resize(n);
+    s.swap_items.resize(n);
+    uint32_t max_cell = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t c = cell_index(g, bodies[i].position);
+        max_cell = std::max(max_cell, c);
+        s.items[i] = static_cast<uint64_t>(c) << 32 | static_cast<uint32_t>(i);
+    }
+    s.cell_start.clear();
+    if (table) {
+        sort_by_cell_with_table(s, static_cast<uint32_t>(cells));
+    } else {
+        radix_sort_by_cell(s, max_cell);
+    }
+    s.proxies.resize(n);
     s.run_cell.clear();
     s.run_start.clear();
     for (size_t k = 0; k < n; ++k) {
+        const uint32_t index = static_cast<uint32_t>(s.items[k]);
+        const body& b = bodies[index];
+        s.proxies[k] = {b.position, b.radius, index};
+    }
+    if (!g.wraps) return;  // the table answers every question the runs would
+    for (size_t k = 0; k < n; ++k) {
         const uint32_t cell = static_cast<uint32_t>(s.items[k] >> 32);
-        s.sorted[k] = static_cast<uint32_t>(s.items[k]);
         if (s.run_cell.empty() || s.run_cell.back() != cell) {
             s.run_cell.push_back(cell);
             s.run_start.push_back(static_cast<uint32_t>(k));
@@ -93,11 +92,15 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     s.run_start.push_back(static_cast<uint32_t>(n));
 }
 
-// The run of `cell`, searching the whole list (for neighbours across a wrapped edge).
-uint32_t find_run(const broadphase_scratch& s, uint32_t cell) {
-    const auto at = std::lower_bound(s.run_cell.begin(), s.run_cell.end(), cell);
-    return at != s.run_cell.end() && *at == cell ? static_cast<uint32_t>(at - s.run_cell.begin()) : no_run;
+namespace detail {
+
+void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s) {
+    s.proxies.resize(bodies.size());
+    for (size_t i = 0; i < bodies.size(); ++i)
+        s.proxies[i] = {bodies[i].position, bodies[i].radius, static_cast<uint32_t>(i)};
 }
+
+}  // namespace detail
 
 body_extent measure_extent(std::span<const body> bodies) {
     body_extent e;
@@ -123,6 +126,7 @@ grid make_grid(const body_extent& extent, size_t count, const world_config& conf
         g.nx = cells_along(config.size.x(), target);
         g.ny = cells_along(config.size.y(), target);
         g.cell = {config.size.x() / static_cast<real>(g.nx), config.size.y() / static_cast<real>(g.ny)};
+        g.stride = g.nx;
         return g;
     }
     const vec2 lo = extent.any ? extent.lo : vec2{0, 0};
@@ -135,6 +139,7 @@ grid make_grid(const body_extent& extent, size_t count, const world_config& conf
     g.cell = {cell, cell};
     g.nx = static_cast<uint32_t>(std::floor((hi.x() - lo.x()) / cell)) + 1;
     g.ny = static_cast<uint32_t>(std::floor((hi.y() - lo.y()) / cell)) + 1;
+    g.stride = g.nx + 1;
     return g;
 }
 
@@ -144,54 +149,9 @@ void find_candidate_pairs(std::span<const body> bodies, const world_config& conf
 
 void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
     s.pairs.clear();
-    // A wrapping grid under 3 cells wide would see one neighbour twice: test every pair.
-    if (g.wraps && (g.nx < 3 || g.ny < 3)) {
-        all_pairs(bodies.size(), s);
-        return;
-    }
-    bucket_by_cell(bodies, g, s);
-    // Occupied cells in index order; for each, its own pairs, then half of its 3×3
-    // neighbourhood in the order (+1, 0), (−1, +1), (0, +1), (+1, +1), so that each pair of
-    // cells is visited once. Empty cells add no pair, so skipping them keeps the pair order
-    // (and hence the contact order and the results) exactly as a walk over every cell.
-    static constexpr int offsets[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-    const uint32_t runs = static_cast<uint32_t>(s.run_cell.size());
-    uint32_t below = 0;  // cursor for the next row's cells, which grow with the current cell
-    uint32_t row = 0, row_start = 0;  // the current cell's row, found by stepping (no division)
-    for (uint32_t r = 0; r < runs; ++r) {
-        const uint32_t c = s.run_cell[r];
-        while (c - row_start >= g.nx) {
-            ++row;
-            row_start += g.nx;
-        }
-        const uint32_t begin = s.run_start[r], end = s.run_start[r + 1];
-        for (uint32_t i = begin; i < end; ++i)
-            for (uint32_t j = i + 1; j < end; ++j) add_pair(s, s.sorted[i], s.sorted[j]);
-        const int cx = static_cast<int>(c - row_start);
-        const int cy = static_cast<int>(row);
-        for (const auto& o : offsets) {
-            int nx = cx + o[0];
-            int ny = cy + o[1];
-            const bool crosses = nx < 0 || nx >= static_cast<int>(g.nx) || ny >= static_cast<int>(g.ny);
-            if (crosses && !g.wraps) continue;
-            if (crosses) {
-                nx = (nx + static_cast<int>(g.nx)) % static_cast<int>(g.nx);
-                ny = ny % static_cast<int>(g.ny);
-            }
-            const uint32_t n = static_cast<uint32_t>(ny) * g.nx + static_cast<uint32_t>(nx);
-            uint32_t q;
-            if (crosses) {
-                q = find_run(s, n);
-            } else if (o[1] == 0) {
-                q = r + 1 < runs && s.run_cell[r + 1] == n ? r + 1 : no_run;
-            } else {
-                q = find_run_from(s, below, n);
-            }
-            if (q == no_run) continue;
-            for (uint32_t i = begin; i < end; ++i)
-                for (uint32_t j = s.run_start[q]; j < s.run_start[q + 1]; ++j) add_pair(s, s.sorted[i], s.sorted[j]);
-        }
-    }
+    for_each_candidate_pair(bodies, g, s, [&s](const cell_proxy& p, const cell_proxy& q) {
+        s.pairs.emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
+    });
 }
 
 }  // namespace arena::world

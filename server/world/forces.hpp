@@ -67,7 +67,7 @@ inline bool touches_floor(const body& b, const world_config& config) {
 inline void accumulate_forces(body& b, const world_config& config) {
     apply_weight(b, config.gravity);
     if (touches_floor(b, config)) apply_floor_contact(b, config.gravity, config.floor_friction);
-    apply_drag(b, medium_density(config, b.position));
+    if (b.drag_area != 0) apply_drag(b, medium_density(config, b.position));  // no search for a body without drag
     apply_angular_damping(b, config.angular_damping);
 }
 

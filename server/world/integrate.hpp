@@ -19,9 +19,11 @@ namespace detail {
 
 // `value` after a resistance step `delta` that opposes the motion `before` it was computed from:
 // the motion stops at exactly zero rather than reversing (no jitter around rest).
+// Bitwise & and | instead of && and ||: the signs of velocities are random, and the branches
+// those made were a third of the force-and-velocity pass. value + (−before) is value − before.
 inline real resist(real value, real before, real delta) {
-    const bool overshoots = (before > 0 && before + delta <= 0) || (before < 0 && before + delta >= 0);
-    return overshoots ? value - before : value + delta;
+    const bool overshoots = ((before > 0) & (before + delta <= 0)) | ((before < 0) & (before + delta >= 0));
+    return value + (overshoots ? -before : delta);
 }
 
 }  // namespace detail
@@ -33,13 +35,19 @@ inline void integrate_velocity(body& b, real dt) {
     const vec2 before = b.velocity;
     b.velocity += b.force * (b.inv_mass * dt);
     const vec2 delta = b.resistance * (b.inv_mass * dt);
-    b.velocity.x() = detail::resist(b.velocity.x(), before.x(), delta.x());
-    b.velocity.y() = detail::resist(b.velocity.y(), before.y(), delta.y());
-
     const real omega_before = b.angular_velocity;
     b.angular_velocity += b.torque * (b.inv_inertia * dt);
-    b.angular_velocity =
-        detail::resist(b.angular_velocity, omega_before, b.resistance_torque * (b.inv_inertia * dt));
+    const real omega_delta = b.resistance_torque * (b.inv_inertia * dt);
+    // No resistance (most bodies, most steps): nothing can overshoot and resist() would return
+    // value + delta, so add it without the tests. Still add it, for the same bits (−0 + 0 is +0).
+    if (b.resistance == vec2{0, 0} && b.resistance_torque == 0) {
+        b.velocity += delta;
+        b.angular_velocity += omega_delta;
+        return;
+    }
+    b.velocity.x() = detail::resist(b.velocity.x(), before.x(), delta.x());
+    b.velocity.y() = detail::resist(b.velocity.y(), before.y(), delta.y());
+    b.angular_velocity = detail::resist(b.angular_velocity, omega_before, omega_delta);
 }
 
 // x += v·Δt and θ += ω·Δt (θ wrapped into (−π, π]).

@@ -16,34 +16,19 @@ void view_index::build(std::span<const body> bodies, const world_config& config,
     // distance test. Smaller cells cut the distance tests but cost more per cell visited.
     grid_ = make_grid(extent, bodies.size(), config, reach_ / 2);
     bucket_by_cell(bodies, grid_, scratch_);
-    // Cell → run in O(1) instead of a binary search per visited cell, while the table is small.
-    const uint64_t cells = uint64_t{grid_.nx} * grid_.ny;
-    run_of_cell_.clear();
-    if (cells <= max_table_cells) {
-        run_of_cell_.assign(cells, no_run);
-        for (uint32_t r = 0; r < scratch_.run_cell.size(); ++r) run_of_cell_[scratch_.run_cell[r]] = r;
-    }
     seen_.assign((bodies.size() + 63) / 64, 0);
-    // What a query reads of each body, in cell order: contiguous per cell, 16 bytes a body
-    // instead of a cache miss into the body array for each one.
-    packed_.resize(bodies.size());
-    for (size_t k = 0; k < bodies.size(); ++k) {
-        const body& b = bodies[scratch_.sorted[k]];
-        packed_[k] = {b.position, b.radius, scratch_.sorted[k]};
-    }
 }
 
 void view_index::visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre,
                             std::vector<uint32_t>& out) const {
-    const uint32_t cell = cy * grid_.nx + cx;
-    const uint32_t run = run_of_cell_.empty() ? find_run(scratch_, cell) : run_of_cell_[cell];
-    if (run == no_run) return;
+    const uint32_t cell = cy * grid_.stride + cx;
+    const slot_range slots = cell_slots(scratch_, cell);
     if (inside) {
-        for (uint32_t k = scratch_.run_start[run]; k < scratch_.run_start[run + 1]; ++k) out.push_back(packed_[k].index);
+        for (uint32_t k = slots.begin; k < slots.end; ++k) out.push_back(scratch_.proxies[k].index);
         return;
     }
-    for (uint32_t k = scratch_.run_start[run]; k < scratch_.run_start[run + 1]; ++k) {
-        const packed_body& p = packed_[k];
+    for (uint32_t k = slots.begin; k < slots.end; ++k) {
+        const cell_proxy& p = scratch_.proxies[k];
         const real limit = radius_ + p.radius;
         if (displacement(centre, p.position, config_).squaredNorm() <= limit * limit) out.push_back(p.index);
     }

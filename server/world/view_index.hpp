@@ -32,15 +32,7 @@ private:
     broadphase_scratch scratch_;
     real radius_ = 0;
     real reach_ = 0;  // radius + the largest body radius: how far a visible centre can be
-    static constexpr uint64_t max_table_cells = 1u << 20;
-    std::vector<uint32_t> run_of_cell_;  // cell → its run in scratch_, or no_run; empty: too many cells
-    std::vector<uint64_t> seen_;         // one bit per body, all zero between queries
-    struct packed_body {
-        vec2 position;
-        real radius;
-        uint32_t index;  // in the body span
-    };
-    std::vector<packed_body> packed_;    // in scratch_.sorted's order (by cell)
+    std::vector<uint64_t> seen_;  // one bit per body, all zero between queries
 };
 
 }  // namespace arena::world
