@@ -61,11 +61,14 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     const bool table = !g.wraps || cells <= max_table_cells(n);
     s.items.resize(n);
     s.swap_items.resize(n);
+    s.unsorted.resize(n);
     uint32_t max_cell = 0;
     for (size_t i = 0; i < n; ++i) {
-        const uint32_t c = cell_index(g, bodies[i].position);
+        const body& b = bodies[i];
+        const uint32_t c = cell_index(g, b.position);
         max_cell = std::max(max_cell, c);
         s.items[i] = static_cast<uint64_t>(c) << 32 | static_cast<uint32_t>(i);
+        s.unsorted[i] = {b.position, b.radius, static_cast<uint32_t>(i)};
     }
     s.cell_start.clear();
     if (table) {
@@ -76,11 +79,9 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     s.proxies.resize(n);
     s.run_cell.clear();
     s.run_start.clear();
-    for (size_t k = 0; k < n; ++k) {
-        const uint32_t index = static_cast<uint32_t>(s.items[k]);
-        const body& b = bodies[index];
-        s.proxies[k] = {b.position, b.radius, index};
-    }
+    // Gathered from the compact copy: 16 bytes a body instead of the 88-byte bodies, whose
+    // random reads missed the cache in a 100k-body world.
+    for (size_t k = 0; k < n; ++k) s.proxies[k] = s.unsorted[static_cast<uint32_t>(s.items[k])];
     if (!g.wraps) return;  // the table answers every question the runs would
     for (size_t k = 0; k < n; ++k) {
         const uint32_t cell = static_cast<uint32_t>(s.items[k] >> 32);

@@ -25,6 +25,7 @@ struct broadphase_scratch {
     std::vector<uint64_t> items;        // cell << 32 | body index, sorted by cell (stable)
     std::vector<uint64_t> swap_items;   // the radix sort's other buffer
     std::vector<uint32_t> count;        // radix sort: digit → next slot
+    std::vector<cell_proxy> unsorted;   // the bodies' proxies in index order
     std::vector<cell_proxy> proxies;    // the bodies sorted by cell, stable (index order within a cell)
     std::vector<uint32_t> run_cell;     // occupied cells, increasing (see bucket_by_cell)
     std::vector<uint32_t> run_start;    // run → first slot in `proxies` (size runs + 1)
