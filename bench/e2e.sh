@@ -67,6 +67,9 @@ if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
   echo "running Arena with 200 bots (whole world, then the default 100 m view)..." >&2
   run_arena 200 arena-200-world "--view-radius 0"
   run_arena 200 arena-200
+  echo "running the TCP floor with 200 clients (no game, no framework)..." >&2
+  taskset -c 0,1 "$bin/arena-bench-tcp-floor" --clients 200 --seconds "$seconds" > "$work/tcp-floor.json" \
+    || echo "tcp floor run failed" >&2
   python3 "$here/e2e_table.py" colyseus "$work"
 else
   echo

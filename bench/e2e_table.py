@@ -68,6 +68,19 @@ def colyseus_table(work):
         a = arena_row(work, label)
         print(f"| Arena ({snapshots_kind(a)}) | {a['cpu_per_s']:.3f} | {a['rss_mb']:.1f} | {a['out_per_client']:.0f} |")
         print(f"| Colyseus / Arena ({snapshots_kind(a)}) | {c_cpu / a['cpu_per_s']:.1f}x | {c['server_peak_rss_mb'] / a['rss_mb']:.1f}x | {c_bytes / a['out_per_client']:.2f}x |")
+    try:
+        with open(f"{work}/tcp-floor.json") as f:
+            t = json.loads(f.read().strip().splitlines()[-1])
+    except (OSError, ValueError, IndexError):
+        print("\nTCP floor run failed: no JSON line.")
+        return
+    print(f"| TCP floor: the same messages, no game, no framework | {t['server_cpu_s_per_s']:.3f} | | |")
+    print()
+    print(f"TCP floor (`arena-bench-tcp-floor`): {t['inputs_per_s']:.0f} inputs/s of {t['input_bytes']} B read with "
+          f"{t['recv_calls_per_s']:.0f} recv/s after {t['epoll_waits_per_s']:.0f} epoll_wait/s, "
+          f"{t['snapshot_sends_per_s']:.0f} snapshots/s of {t['snapshot_bytes']} B sent. "
+          f"10x less CPU than Colyseus would be {c_cpu / 10:.3f} core; "
+          f"the floor alone is {t['server_cpu_s_per_s']:.3f} ({t['server_cpu_s_per_s'] / (c_cpu / 10):.1f}x that).")
 
 
 if __name__ == "__main__":
