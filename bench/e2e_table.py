@@ -52,11 +52,18 @@ def arena_table(work, labels):
               f"{r['in_view']:.1f} | {r['snapshot_bytes']:.0f} | {r['bytes_per_body']:.2f}{codec} |")
 
 
-def colyseus_table(work):
+def last_json_line(path):
+    """The last line of a run's output as JSON, or None when the run left none."""
     try:
-        with open(f"{work}/colyseus.json") as f:
-            c = json.loads(f.read().strip().splitlines()[-1])
+        with open(path) as f:
+            return json.loads(f.read().strip().splitlines()[-1])
     except (OSError, ValueError, IndexError):
+        return None
+
+
+def colyseus_table(work):
+    c = last_json_line(f"{work}/colyseus.json")
+    if c is None:
         print("Colyseus run failed: no JSON line (see its log).")
         return
     c_cpu = c["server_cpu_pct_of_core"] / 100
@@ -68,10 +75,8 @@ def colyseus_table(work):
         a = arena_row(work, label)
         print(f"| Arena ({snapshots_kind(a)}) | {a['cpu_per_s']:.3f} | {a['rss_mb']:.1f} | {a['out_per_client']:.0f} |")
         print(f"| Colyseus / Arena ({snapshots_kind(a)}) | {c_cpu / a['cpu_per_s']:.1f}x | {c['server_peak_rss_mb'] / a['rss_mb']:.1f}x | {c_bytes / a['out_per_client']:.2f}x |")
-    try:
-        with open(f"{work}/tcp-floor.json") as f:
-            t = json.loads(f.read().strip().splitlines()[-1])
-    except (OSError, ValueError, IndexError):
+    t = last_json_line(f"{work}/tcp-floor.json")
+    if t is None:
         print("\nTCP floor run failed: no JSON line.")
         return
     print(f"| TCP floor: the same messages, no game, no framework | {t['server_cpu_s_per_s']:.3f} | | |")
