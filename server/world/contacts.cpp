@@ -98,10 +98,10 @@ void detect_contacts(std::span<const body> bodies, const grid& g, const world_co
         // gives (the same expressions) before the per-wall work.
         const real spec = config.speculative_distance;
         const bool far_from_floor = b.position.y() - b.radius >= spec;
-        const bool far_from_walls = four_walls ? (b.position.x() - b.radius >= spec) &
-                                                     (config.size.x() - b.position.x() - b.radius >= spec) &
-                                                     (config.size.y() - b.position.y() - b.radius >= spec)
-                                               : true;
+        const bool far_from_left = b.position.x() - b.radius >= spec;
+        const bool far_from_right = config.size.x() - b.position.x() - b.radius >= spec;
+        const bool far_from_top = config.size.y() - b.position.y() - b.radius >= spec;
+        const bool far_from_walls = !four_walls || (far_from_left & far_from_right & far_from_top);
         if (far_from_floor & far_from_walls) continue;
         for (wall w : {wall::left, wall::right, wall::bottom, wall::top}) {
             if (!has_wall(config, w)) continue;
