@@ -9,6 +9,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -109,13 +110,9 @@ class bit_reader {
   // n ≤ 32 bits; 0 (and failed) when fewer are left.
   std::uint64_t get(unsigned n) noexcept {
     if (n > bits_left()) return fail();
-    const std::size_t byte = pos_ >> 3;
-    const unsigned shift = pos_ & 7;
-    const std::size_t avail = bytes_.size() - byte < 8 ? bytes_.size() - byte : 8;
-    std::uint64_t w = 0;
-    for (std::size_t i = 0; i < avail; ++i) w |= std::uint64_t{bytes_[byte + i]} << (8 * i);
+    const std::uint64_t v = peek(n);
     pos_ += n;
-    return (w >> shift) & ((std::uint64_t{1} << n) - 1);
+    return v;
   }
   std::uint64_t get_wide(unsigned n) noexcept {  // n ≤ 64
     std::uint64_t v = 0;
@@ -129,9 +126,22 @@ class bit_reader {
   }
   // Refuses (failed, 0) a code longer than the writer can produce: the result is < 2^62.
   std::uint64_t get_golomb(unsigned k) noexcept {
+    // The zeros before the first one bit, counted up to 56 at a time instead of bit by bit:
+    // this prefix is in every code, and reading it a bit at a time was most of a decode.
     unsigned zeros = 0;
-    while (get(1) == 0) {
-      if (failed_ || ++zeros + k > 61) return fail();
+    for (;;) {
+      const unsigned avail = static_cast<unsigned>(std::min<std::uint64_t>(bits_left(), 56));
+      if (avail == 0) return fail();  // ran out before the one
+      const std::uint64_t w = peek(avail);
+      if (w == 0) {
+        zeros += avail;
+        pos_ += avail;
+      } else {
+        zeros += static_cast<unsigned>(std::countr_zero(w));
+        pos_ += static_cast<unsigned>(std::countr_zero(w)) + 1;  // the zeros and the one
+      }
+      if (zeros + k > 61) return fail();
+      if (w != 0) break;
     }
     const unsigned low = zeros + k;
     const std::uint64_t m = (std::uint64_t{1} << low) | get_wide(low);
@@ -145,6 +155,21 @@ class bit_reader {
   }
 
  private:
+  // The next n ≤ 56 bits (n ≤ bits_left()), without moving: 8 bytes in one load where the
+  // buffer has them (a byte at a time was the reader's cost), least significant bit first.
+  [[nodiscard]] std::uint64_t peek(unsigned n) const noexcept {
+    const std::size_t byte = pos_ >> 3;
+    const unsigned shift = pos_ & 7;
+    std::uint64_t w = 0;
+    if (bytes_.size() - byte >= 8 && std::endian::native == std::endian::little) {
+      std::memcpy(&w, bytes_.data() + byte, 8);
+    } else {
+      const std::size_t avail = std::min<std::size_t>(bytes_.size() - byte, 8);
+      for (std::size_t i = 0; i < avail; ++i) w |= std::uint64_t{bytes_[byte + i]} << (8 * i);
+    }
+    return (w >> shift) & ((std::uint64_t{1} << n) - 1);
+  }
+
   std::uint64_t fail() noexcept {
     failed_ = true;
     pos_ = bytes_.size() * 8;
