@@ -14,6 +14,7 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <poll.h>
 #include <sched.h>
 #include <sys/epoll.h>
 #include <sys/resource.h>
@@ -67,9 +68,17 @@ void no_delay(int fd) {
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
 }
 
+// What the client thread tells the server thread.
+struct client_state {
+    std::atomic<bool> connected = false;
+    std::atomic<bool> failed = false;  // `error` says why
+    std::string error;
+    std::atomic<bool> stop = false;
+};
+
 // Every `period` from `start`, sends one input on every socket, and reads whatever came back
 // in between, until `stop`.
-void run_clients(const options& o, uint16_t port, std::atomic<bool>& connected, std::atomic<bool>& stop) {
+void run_clients(const options& o, uint16_t port, client_state& state) {
     pin_to(o.client_cpu);
     sockaddr_in to{};
     to.sin_family = AF_INET;
@@ -87,24 +96,35 @@ void run_clients(const options& o, uint16_t port, std::atomic<bool>& connected, 
         epoll_ctl(poll, EPOLL_CTL_ADD, fd, &ev);
         sockets.push_back(fd);
     }
-    connected = true;
+    state.connected = true;
     const std::vector<char> input(static_cast<size_t>(o.input_bytes), 'i');
     std::vector<char> sink(1 << 16);
     std::vector<epoll_event> ready(static_cast<size_t>(o.clients));
     const auto period = std::chrono::duration<double>(1.0 / o.input_hz);
     auto next = clock_type::now();
-    while (!stop) {
+    while (!state.stop) {
         for (int fd : sockets) send(fd, input.data(), input.size(), MSG_NOSIGNAL);
         next += std::chrono::duration_cast<clock_type::duration>(period);
         for (;;) {
             const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(next - clock_type::now()).count();
             const int n = epoll_wait(poll, ready.data(), static_cast<int>(ready.size()), left > 0 ? static_cast<int>(left) : 0);
             for (int k = 0; k < n; ++k) recv(ready[static_cast<size_t>(k)].data.fd, sink.data(), sink.size(), MSG_DONTWAIT);
-            if (left <= 0 || stop) break;
+            if (left <= 0 || state.stop) break;
         }
     }
     for (int fd : sockets) close(fd);
     close(poll);
+}
+
+// run_clients on its own thread: a failure (too few file descriptors, say) is reported to the
+// server thread instead of ending the process.
+void client_thread(const options& o, uint16_t port, client_state& state) {
+    try {
+        run_clients(o, port, state);
+    } catch (const std::exception& e) {
+        state.error = e.what();
+        state.failed = true;
+    }
 }
 
 }  // namespace
@@ -131,11 +151,23 @@ int main(int argc, char** argv) {
         if (listener < 0 || bind(listener, reinterpret_cast<const sockaddr*>(&at), sizeof at) != 0 ||
             listen(listener, o.clients) != 0 || getsockname(listener, reinterpret_cast<sockaddr*>(&at), &length) != 0)
             fail("listen");
-        std::atomic<bool> connected = false, stop = false;
-        std::thread clients(run_clients, std::cref(o), ntohs(at.sin_port), std::ref(connected), std::ref(stop));
+        client_state state;
+        std::thread clients(client_thread, std::cref(o), ntohs(at.sin_port), std::ref(state));
+        // Joined on every way out, so that a failure is reported, not std::terminate.
+        struct joiner {
+            std::thread& t;
+            client_state& s;
+            ~joiner() {
+                s.stop = true;
+                t.join();
+            }
+        } join_clients{clients, state};
         const int poll = epoll_create1(0);
         std::vector<int> sockets;
         while (static_cast<int>(sockets.size()) < o.clients) {
+            if (state.failed) throw std::runtime_error("clients: " + state.error);
+            pollfd waiting{listener, POLLIN, 0};
+            if (::poll(&waiting, 1, 100) <= 0) continue;  // a connection, or a look at the clients
             const int fd = accept(listener, nullptr, nullptr);
             if (fd < 0) fail("accept");
             no_delay(fd);
@@ -145,7 +177,10 @@ int main(int argc, char** argv) {
             epoll_ctl(poll, EPOLL_CTL_ADD, fd, &ev);
             sockets.push_back(fd);
         }
-        while (!connected) std::this_thread::yield();
+        while (!state.connected) {
+            if (state.failed) throw std::runtime_error("clients: " + state.error);
+            std::this_thread::yield();
+        }
 
         const std::vector<char> snapshot(static_cast<size_t>(o.snapshot_bytes), 's');
         std::vector<char> buffer(4096);
@@ -174,8 +209,6 @@ int main(int argc, char** argv) {
         }
         const double window = std::chrono::duration<double>(clock_type::now() - start).count();
         const double cpu = thread_cpu_seconds() - cpu_start;
-        stop = true;
-        clients.join();
         for (int fd : sockets) close(fd);
         close(poll);
         close(listener);
