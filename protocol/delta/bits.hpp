@@ -137,8 +137,9 @@ class bit_reader {
         zeros += avail;
         pos_ += avail;
       } else {
-        zeros += static_cast<unsigned>(std::countr_zero(w));
-        pos_ += static_cast<unsigned>(std::countr_zero(w)) + 1;  // the zeros and the one
+        const auto z = static_cast<unsigned>(std::countr_zero(w));
+        zeros += z;
+        pos_ += z + 1;  // the zeros and the one
       }
       if (zeros + k > 61) return fail();
       if (w != 0) break;

@@ -12,10 +12,6 @@ uint32_t cells_along(real extent, real target) {
     return n < 1 ? 1u : static_cast<uint32_t>(std::min<real>(n, 1 << 20));
 }
 
-}  // namespace
-
-namespace {
-
 // Counting sort of s.items on the cell (the high half), stable, leaving s.cell_start as the
 // table of where each cell's bodies start (and end: the next cell's start).
 void sort_by_cell_with_table(broadphase_scratch& s, uint32_t cells) {
@@ -50,11 +46,12 @@ void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
 
 }  // namespace
 
-// Sorts the bodies by cell (stable, so in index order within a cell) and lists the occupied
-// cells as runs. Work is O(bodies), whatever the number of cells: the asteroids preset has about
-// 28 cells a body, nearly all empty, and walking them (with a division per neighbour) was 90 %
-// of a 10k-body step. A grid with a table (see broadphase.hpp) is sorted through it instead, and
-// the table then answers "which bodies are in this cell" with two loads.
+// Sorts the bodies by cell (stable, so in index order within a cell). A grid with a table (see
+// broadphase.hpp) is sorted through it, and the table then answers "which bodies are in this
+// cell" with two loads. A wrapping grid also gets its occupied cells listed as runs, and one too
+// large for a table is radix-sorted: O(bodies), whatever the number of cells, since the asteroids
+// preset has about 28 cells a body, nearly all empty, and walking them (with a division per
+// neighbour) was 90 % of a 10k-body step.
 void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
     const size_t n = bodies.size();
     const uint64_t cells = g.cell_count();
