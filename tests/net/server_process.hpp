@@ -32,6 +32,9 @@ public:
     long rss_kib() const;
     // Everything the server wrote to stderr so far (its log).
     std::string log();
+    // Whether the log holds `text` within `timeout`: the server's line may still be on its way
+    // through the pipe and the drain thread when the client has already seen the effect.
+    bool log_shows(const std::string& text, std::chrono::milliseconds timeout = std::chrono::milliseconds(2000));
 
 private:
     pid_t pid_ = -1;

@@ -180,7 +180,7 @@ TEST_CASE("a client that never reads keeps the server's memory bounded and is dr
     const long rss_after = server.rss_kib();
     INFO("rss before " << rss_before << " KiB, after " << rss_after << " KiB");
     CHECK(rss_after - rss_before < 4096);  // at most one pending snapshot per client
-    CHECK(server.log().find("code=slow_consumer") != std::string::npos);
+    CHECK(server.log_shows("code=slow_consumer"));
     CHECK(count_snapshots(good.client, 1000ms) >= 18);
     std::remove(config.c_str());
 }
@@ -227,7 +227,7 @@ TEST_CASE("with --token-secret only signed, unexpired tokens join, under the sig
     test_client c(server.port());
     c.send_frame(protocol::encode_hello(protocol::protocol_version, "claims-to-be-bob", token));
     REQUIRE(c.read_until(Payload::Welcome));
-    CHECK(server.log().find("name=alice") != std::string::npos);
+    CHECK(server.log_shows("name=alice"));
     std::remove(secret.c_str());
 }
 
@@ -271,7 +271,7 @@ TEST_CASE("a recorded live session replays with every hash matching", "[net][e2e
     INFO(replayed.output);
     CHECK(replayed.exit_code == 0);
     CHECK(replayed.output.find("final_hash=") != std::string::npos);
-    CHECK(server.log().find("recorded ") != std::string::npos);
+    CHECK(server.log_shows("recorded "));
     std::remove(recording.c_str());
 }
 
