@@ -7,13 +7,17 @@ CMAKE_FLAGS ?=
 ifdef CI
 CMAKE_FLAGS += -DARENA_WERROR=ON
 endif
+# Rebuilds of unchanged files come from the compiler cache when one is installed.
+ifneq ($(shell command -v ccache 2>/dev/null),)
+CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+endif
 
 # Debian packages the build and the tests need (see ../shared/DEPS.md).
 PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
-  libclang-rt-14-dev libsodium-dev procps prometheus
+  libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus
 
-.PHONY: all deps build run test test-fast bench bench-deps bench-e2e clean fuzz lint-docker
+.PHONY: all deps build run test test-fast bench bench-deps bench-e2e clean fuzz lint-docker format format-check
 
 all: build
 
@@ -37,7 +41,7 @@ run: build
 
 # Release tests, then the same tests under AddressSanitizer + UBSan, then the cross-compiler
 # determinism check. The Dockerfile is linted first: no Docker engine runs here to build it.
-test: build lint-docker
+test: build format-check lint-docker
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
@@ -68,6 +72,13 @@ fuzz: deps
 	    2> $(FUZZ_BUILD)/$$t.log || { tail -40 $(FUZZ_BUILD)/$$t.log; exit 1; }; \
 	  grep -E "stat::number_of_executed_units|stat::new_units_added" $(FUZZ_BUILD)/$$t.log | tr '\n' ' '; echo; \
 	done
+
+# Every C++ file in one style (.clang-format); `make test` fails on a file that is not.
+FORMAT_FILES = $(shell git ls-files '*.cpp' '*.hpp' '*.h')
+format: deps
+	clang-format-14 -i $(FORMAT_FILES)
+format-check: deps
+	@clang-format-14 --dry-run -Werror $(FORMAT_FILES) && echo "format-check: $(words $(FORMAT_FILES)) files formatted"
 
 # Release tests only: the quick loop while developing.
 test-fast: build

@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
         } else if (!std::strcmp(argv[i], "--tmp") && i + 1 < argc) {
             tmp_dir = argv[++i];
         } else {
-            std::fprintf(stderr, "usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick] [--tmp DIR]\n");
+            std::fprintf(
+                stderr, "usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick] [--tmp DIR]\n");
             return 2;
         }
     }
@@ -42,7 +43,9 @@ int main(int argc, char** argv) {
         cases.push_back(only.substr(at, comma - at));
         at = comma + 1;
     }
-    auto wants = [&](const char* name) { return std::find(cases.begin(), cases.end(), name) != cases.end(); };
+    auto wants = [&](const char* name) {
+        return std::find(cases.begin(), cases.end(), name) != cases.end();
+    };
     using namespace arena::bench;
     if (wants("step")) {
         bench_world_step(1000, 60, quick ? 120 : 600);

@@ -28,9 +28,7 @@ struct measuring_client : net::participant {
 
     void send(protocol::frame_bytes) override {}
     // Kept, and read after the tick: the server's time is measured without the clients'.
-    void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
-        s.copy_with_ack(ack, pending);
-    }
+    void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override { s.copy_with_ack(ack, pending); }
     void send_snapshot_frame(std::span<const uint8_t> frame) override { pending.assign(frame.begin(), frame.end()); }
     void reject(protocol::RejectCode, std::string_view) override {}
     void say_bye(std::string_view) override {}
@@ -136,15 +134,18 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
     const stats s = summarize(tick_ms);
     std::sort(tick_ms.begin(), tick_ms.end());
     const double p99 = tick_ms.empty() ? 0 : tick_ms[tick_ms.size() * 99 / 100];
-    const auto per = [](uint64_t a, uint64_t b) { return b == 0 ? 0.0 : static_cast<double>(a) / static_cast<double>(b); };
-    std::printf("{\"bench\":\"bandwidth\",\"players\":%u,\"bodies\":%zu,\"view_radius\":%.0f,\"mode\":\"%s\","
-                "\"ticks\":%u,\"snapshots\":%llu,\"errors\":%llu,\"bytes_per_snapshot\":%.1f,"
-                "\"bodies_per_snapshot\":%.1f,\"bytes_per_body\":%.3f,\"payload_bytes_per_body\":%.3f,"
-                "\"bytes_per_client_per_s\":%.0f,\"tick_ms_median\":%.3f,\"tick_ms_p99\":%.3f}\n",
-                players, g.state().bodies().size(), view_radius, delta ? "delta" : "full", ticks,
-                static_cast<unsigned long long>(snapshots), static_cast<unsigned long long>(errors),
-                per(bytes, snapshots), per(bodies, snapshots), per(bytes, bodies), per(payload, bodies),
-                per(bytes, snapshots) * config.snapshot_rate, s.median, p99);
+    const auto per = [](uint64_t a, uint64_t b) {
+        return b == 0 ? 0.0 : static_cast<double>(a) / static_cast<double>(b);
+    };
+    std::printf(
+        "{\"bench\":\"bandwidth\",\"players\":%u,\"bodies\":%zu,\"view_radius\":%.0f,\"mode\":\"%s\","
+        "\"ticks\":%u,\"snapshots\":%llu,\"errors\":%llu,\"bytes_per_snapshot\":%.1f,"
+        "\"bodies_per_snapshot\":%.1f,\"bytes_per_body\":%.3f,\"payload_bytes_per_body\":%.3f,"
+        "\"bytes_per_client_per_s\":%.0f,\"tick_ms_median\":%.3f,\"tick_ms_p99\":%.3f}\n",
+        players, g.state().bodies().size(), view_radius, delta ? "delta" : "full", ticks,
+        static_cast<unsigned long long>(snapshots), static_cast<unsigned long long>(errors), per(bytes, snapshots),
+        per(bodies, snapshots), per(bytes, bodies), per(payload, bodies), per(bytes, snapshots) * config.snapshot_rate,
+        s.median, p99);
     std::fflush(stdout);
 }
 

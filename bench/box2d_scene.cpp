@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
     double speed_sum = 0;
     long touching = 0;
     for (const world::body& b : w.bodies()) {
-        final_state.push_back({b.position.x() - scene.half_extent, b.position.y() - scene.half_extent, b.velocity.x(),
-                               b.velocity.y()});
+        final_state.push_back(
+            {b.position.x() - scene.half_extent, b.position.y() - scene.half_extent, b.velocity.x(), b.velocity.y()});
         speed_sum += std::sqrt(static_cast<double>(b.velocity.squaredNorm()));
     }
     for (const world::contact& c : w.last_contacts())

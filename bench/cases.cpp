@@ -43,12 +43,13 @@ void bench_world_step(uint32_t bodies, int warmup, int steps) {
     world::world w(scaled_asteroids(bodies), 1);
     const double setup_ms = ms_between(t0, clock::now());
     const stats s = time_samples(warmup, steps, [&] { w.step({}); });
-    std::printf("{\"bench\":\"world_step\",\"preset\":\"asteroids\",\"n\":%zu,\"warmup\":%d,\"steps\":%d,"
-                "\"ms_per_step_median\":%.4f,\"ms_per_step_p90\":%.4f,\"ms_per_step_min\":%.4f,"
-                "\"ns_per_body\":%.2f,\"contacts_last_step\":%zu,\"world_side_m\":%.1f,\"setup_ms\":%.1f,"
-                "\"hash\":\"%016" PRIx64 "\"}\n",
-                w.bodies().size(), warmup, steps, s.median, s.p90, s.min, s.median * 1e6 / static_cast<double>(bodies),
-                w.last_contacts().size(), static_cast<double>(w.config().size.x()), setup_ms, w.hash());
+    std::printf(
+        "{\"bench\":\"world_step\",\"preset\":\"asteroids\",\"n\":%zu,\"warmup\":%d,\"steps\":%d,"
+        "\"ms_per_step_median\":%.4f,\"ms_per_step_p90\":%.4f,\"ms_per_step_min\":%.4f,"
+        "\"ns_per_body\":%.2f,\"contacts_last_step\":%zu,\"world_side_m\":%.1f,\"setup_ms\":%.1f,"
+        "\"hash\":\"%016" PRIx64 "\"}\n",
+        w.bodies().size(), warmup, steps, s.median, s.p90, s.min, s.median * 1e6 / static_cast<double>(bodies),
+        w.last_contacts().size(), static_cast<double>(w.config().size.x()), setup_ms, w.hash());
     std::fflush(stdout);
 }
 
@@ -88,12 +89,13 @@ void bench_integration(uint32_t bodies, int samples) {
         copy_ms.push_back(ms_between(t1, t2));
     }
     const stats si = summarize(integrate_ms), sc = summarize(copy_ms);
-    std::printf("{\"bench\":\"integrate\",\"n\":%u,\"samples\":%d,\"bytes\":%zu,\"body_bytes\":%zu,"
-                "\"integrate_ms_median\":%.3f,\"integrate_ms_p90\":%.3f,\"copy_ms_median\":%.3f,\"copy_ms_p90\":%.3f,"
-                "\"ratio\":%.2f,\"integrate_gb_per_s\":%.2f,\"copy_gb_per_s\":%.2f,\"ns_per_body\":%.2f}\n",
-                bodies, samples, bytes, sizeof(world::body), si.median, si.p90, sc.median, sc.p90, si.median / sc.median,
-                static_cast<double>(bytes) / (si.median * 1e6), static_cast<double>(bytes) / (sc.median * 1e6),
-                si.median * 1e6 / bodies);
+    std::printf(
+        "{\"bench\":\"integrate\",\"n\":%u,\"samples\":%d,\"bytes\":%zu,\"body_bytes\":%zu,"
+        "\"integrate_ms_median\":%.3f,\"integrate_ms_p90\":%.3f,\"copy_ms_median\":%.3f,\"copy_ms_p90\":%.3f,"
+        "\"ratio\":%.2f,\"integrate_gb_per_s\":%.2f,\"copy_gb_per_s\":%.2f,\"ns_per_body\":%.2f}\n",
+        bodies, samples, bytes, sizeof(world::body), si.median, si.p90, sc.median, sc.p90, si.median / sc.median,
+        static_cast<double>(bytes) / (si.median * 1e6), static_cast<double>(bytes) / (sc.median * 1e6),
+        si.median * 1e6 / bodies);
     std::fflush(stdout);
 }
 
@@ -115,12 +117,13 @@ void bench_snapshot(uint32_t bodies, uint32_t clients, int samples) {
         for (auto& o : out) encoder.copy_with_ack(++ack, o);
     });
     const double frame = static_cast<double>(encoder.frame().size());
-    std::printf("{\"bench\":\"snapshot\",\"n\":%u,\"clients\":%u,\"samples\":%d,\"frame_bytes\":%.0f,"
-                "\"bytes_per_body\":%.2f,\"build_ms_median\":%.4f,\"build_ms_p90\":%.4f,"
-                "\"bodies_per_s\":%.4g,\"copy_all_clients_ms_median\":%.4f,\"copy_per_client_us\":%.3f,"
-                "\"body_copies_per_s\":%.4g}\n",
-                bodies, clients, samples, frame, frame / bodies, sb.median, sb.p90, bodies / (sb.median * 1e-3),
-                sc.median, sc.median * 1e3 / clients, static_cast<double>(bodies) * clients / (sc.median * 1e-3));
+    std::printf(
+        "{\"bench\":\"snapshot\",\"n\":%u,\"clients\":%u,\"samples\":%d,\"frame_bytes\":%.0f,"
+        "\"bytes_per_body\":%.2f,\"build_ms_median\":%.4f,\"build_ms_p90\":%.4f,"
+        "\"bodies_per_s\":%.4g,\"copy_all_clients_ms_median\":%.4f,\"copy_per_client_us\":%.3f,"
+        "\"body_copies_per_s\":%.4g}\n",
+        bodies, clients, samples, frame, frame / bodies, sb.median, sb.p90, bodies / (sb.median * 1e-3), sc.median,
+        sc.median * 1e3 / clients, static_cast<double>(bodies) * clients / (sc.median * 1e-3));
     std::fflush(stdout);
 }
 
@@ -186,10 +189,11 @@ bool bench_replay(uint32_t players, uint32_t ticks, const std::string& path) {
     std::remove(path.c_str());
     const stats s = summarize(runs);
     const double ticks_per_s = report.ticks_replayed / (s.median * 1e-3);
-    std::printf("{\"bench\":\"replay\",\"players\":%u,\"ticks\":%u,\"tick_rate\":%u,\"bodies\":%zu,"
-                "\"hashes_checked\":%u,\"ms_median\":%.2f,\"ticks_per_s\":%.0f,\"x_real_time\":%.1f}\n",
-                players, report.ticks_replayed, tick_rate, config.rocks.count + static_cast<size_t>(players),
-                report.hashes_checked, s.median, ticks_per_s, ticks_per_s / tick_rate);
+    std::printf(
+        "{\"bench\":\"replay\",\"players\":%u,\"ticks\":%u,\"tick_rate\":%u,\"bodies\":%zu,"
+        "\"hashes_checked\":%u,\"ms_median\":%.2f,\"ticks_per_s\":%.0f,\"x_real_time\":%.1f}\n",
+        players, report.ticks_replayed, tick_rate, config.rocks.count + static_cast<size_t>(players),
+        report.hashes_checked, s.median, ticks_per_s, ticks_per_s / tick_rate);
     std::fflush(stdout);
     return true;
 }

@@ -47,7 +47,9 @@ struct options {
     int client_cpu = 0;
 };
 
-void fail(const std::string& what) { throw std::runtime_error(what + ": " + std::strerror(errno)); }
+void fail(const std::string& what) {
+    throw std::runtime_error(what + ": " + std::strerror(errno));
+}
 
 void pin_to(int cpu) {
     cpu_set_t set;
@@ -107,8 +109,10 @@ void run_clients(const options& o, uint16_t port, client_state& state) {
         next += std::chrono::duration_cast<clock_type::duration>(period);
         for (;;) {
             const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(next - clock_type::now()).count();
-            const int n = epoll_wait(poll, ready.data(), static_cast<int>(ready.size()), left > 0 ? static_cast<int>(left) : 0);
-            for (int k = 0; k < n; ++k) recv(ready[static_cast<size_t>(k)].data.fd, sink.data(), sink.size(), MSG_DONTWAIT);
+            const int n =
+                epoll_wait(poll, ready.data(), static_cast<int>(ready.size()), left > 0 ? static_cast<int>(left) : 0);
+            for (int k = 0; k < n; ++k)
+                recv(ready[static_cast<size_t>(k)].data.fd, sink.data(), sink.size(), MSG_DONTWAIT);
             if (left <= 0 || state.stop) break;
         }
     }
@@ -189,12 +193,14 @@ int main(int argc, char** argv) {
             std::chrono::duration_cast<clock_type::duration>(std::chrono::duration<double>(1.0 / o.snapshot_hz));
         const double cpu_start = thread_cpu_seconds();
         const auto start = clock_type::now();
-        const auto end = start + std::chrono::duration_cast<clock_type::duration>(std::chrono::duration<double>(o.seconds));
+        const auto end =
+            start + std::chrono::duration_cast<clock_type::duration>(std::chrono::duration<double>(o.seconds));
         auto next_snapshot = start + snapshot_period;
         uint64_t wakes = 0, recvs = 0, sends = 0, bytes_in = 0;
         for (auto now = start; now < end; now = clock_type::now()) {
             if (now >= next_snapshot) {
-                for (int fd : sockets) sends += send(fd, snapshot.data(), snapshot.size(), MSG_DONTWAIT | MSG_NOSIGNAL) > 0;
+                for (int fd : sockets)
+                    sends += send(fd, snapshot.data(), snapshot.size(), MSG_DONTWAIT | MSG_NOSIGNAL) > 0;
                 next_snapshot += snapshot_period;
                 continue;
             }
@@ -217,8 +223,8 @@ int main(int argc, char** argv) {
             "\"inputs_per_s\":%.0f,\"snapshot_sends_per_s\":%.0f,\"recv_calls_per_s\":%.0f,\"epoll_waits_per_s\":%.0f,"
             "\"server_cpu_s_per_s\":%.4f}\n",
             o.clients, window, o.input_bytes, o.snapshot_bytes, static_cast<double>(bytes_in) / o.input_bytes / window,
-            static_cast<double>(sends) / window, static_cast<double>(recvs) / window, static_cast<double>(wakes) / window,
-            cpu / window);
+            static_cast<double>(sends) / window, static_cast<double>(recvs) / window,
+            static_cast<double>(wakes) / window, cpu / window);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "arena-bench-tcp-floor: %s\n", e.what());
         return 1;

@@ -20,7 +20,9 @@ std::uint64_t stream_seed(std::uint64_t seed, std::uint32_t index) {
     return mix.next_u64() ^ (0x9e3779b97f4a7c15ULL * (std::uint64_t{index} + 1));
 }
 
-float clamp_unit(float v) { return std::clamp(v, -1.0f, 1.0f); }
+float clamp_unit(float v) {
+    return std::clamp(v, -1.0f, 1.0f);
+}
 
 // One impulse in about this many ticks (1.5 s at 60 Hz) for the random walk.
 constexpr std::uint64_t impulse_one_in = 90;
@@ -40,21 +42,30 @@ std::optional<behavior_choice> parse_behavior(std::string_view name) {
 
 std::string_view to_string(behavior_kind kind) {
     switch (kind) {
-        case behavior_kind::random: return "random";
-        case behavior_kind::seek: return "seek";
-        case behavior_kind::orbit: return "orbit";
-        case behavior_kind::idle: return "idle";
+        case behavior_kind::random:
+            return "random";
+        case behavior_kind::seek:
+            return "seek";
+        case behavior_kind::orbit:
+            return "orbit";
+        case behavior_kind::idle:
+            return "idle";
     }
     return "unknown";
 }
 
 behavior_kind resolve_behavior(behavior_choice choice, std::uint32_t index) {
     switch (choice) {
-        case behavior_choice::random: return behavior_kind::random;
-        case behavior_choice::seek: return behavior_kind::seek;
-        case behavior_choice::orbit: return behavior_kind::orbit;
-        case behavior_choice::idle: return behavior_kind::idle;
-        case behavior_choice::mixed: break;
+        case behavior_choice::random:
+            return behavior_kind::random;
+        case behavior_choice::seek:
+            return behavior_kind::seek;
+        case behavior_choice::orbit:
+            return behavior_kind::orbit;
+        case behavior_choice::idle:
+            return behavior_kind::idle;
+        case behavior_choice::mixed:
+            break;
     }
     static constexpr behavior_kind cycle[] = {behavior_kind::random, behavior_kind::seek, behavior_kind::orbit,
                                               behavior_kind::idle};
@@ -80,10 +91,14 @@ vec2 behavior::random_point() {
 
 player_input behavior::next(const observation& seen) {
     switch (kind_) {
-        case behavior_kind::idle: return {};
-        case behavior_kind::random: return random_walk();
-        case behavior_kind::seek: return seen.own ? seek(*seen.own) : player_input{};
-        case behavior_kind::orbit: return seen.own ? orbit(*seen.own) : player_input{};
+        case behavior_kind::idle:
+            return {};
+        case behavior_kind::random:
+            return random_walk();
+        case behavior_kind::seek:
+            return seen.own ? seek(*seen.own) : player_input{};
+        case behavior_kind::orbit:
+            return seen.own ? orbit(*seen.own) : player_input{};
     }
     return {};
 }

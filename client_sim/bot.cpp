@@ -236,10 +236,9 @@ void bot::on_snapshot(const protocol::Message& message) {
     const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
     const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
     if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {
-        return end(end_kind::protocol_error,
-                   c.problem == predictor::ack_problem::went_back
-                       ? "Snapshot: ack_sequence went back"
-                       : "Snapshot: ack_sequence acknowledges an input never sent");
+        return end(end_kind::protocol_error, c.problem == predictor::ack_problem::went_back
+                                                 ? "Snapshot: ack_sequence went back"
+                                                 : "Snapshot: ack_sequence acknowledges an input never sent");
     }
     if (!outcome_.misbehaving) {
         if (c.error) {
@@ -312,8 +311,7 @@ bool bot::misbehave() {
         case misbehavior::slow_reader:  // the reader does it
             return false;
         case misbehavior::flood:
-            for (std::uint32_t i = 0; i < flood_inputs_per_tick; ++i)
-                send_input(behavior_->next({predictor_->body()}));
+            for (std::uint32_t i = 0; i < flood_inputs_per_tick; ++i) send_input(behavior_->next({predictor_->body()}));
             return true;
         case misbehavior::garbage:
         case misbehavior::oversize:
@@ -324,8 +322,12 @@ bool bot::misbehave() {
     if (fault_done_) return false;  // done once; play on until the server hangs up
     fault_done_ = true;
     switch (mode_) {
-        case misbehavior::garbage: queue(garbage_frame(fault_rng_)); return false;
-        case misbehavior::oversize: queue(oversize_prefix()); return false;
+        case misbehavior::garbage:
+            queue(garbage_frame(fault_rng_));
+            return false;
+        case misbehavior::oversize:
+            queue(oversize_prefix());
+            return false;
         case misbehavior::nan:
             send_input({std::numeric_limits<float>::quiet_NaN(), 0.0f, 0});
             return true;
@@ -336,22 +338,25 @@ bool bot::misbehave() {
             close_reason_ = "closed mid-frame on purpose (abrupt-close)";
             return true;
         }
-        default: return false;
+        default:
+            return false;
     }
 }
 
 void bot::finish() {
     if (phase_ == phase::ended) return;
     if (phase_ != phase::playing)
-        return end(end_kind::orderly, phase_ == phase::joining ? "no Welcome before the run ended"
-                                                               : "not connected before the run ended");
+        return end(end_kind::orderly,
+                   phase_ == phase::joining ? "no Welcome before the run ended" : "not connected before the run ended");
     if (close_after_flush_) return;
     queue(protocol::encode_bye("run finished"));
     close_after_flush_ = true;
     close_reason_ = "run finished";
 }
 
-void bot::abort(const std::string& reason) { end(end_kind::socket_error, reason); }
+void bot::abort(const std::string& reason) {
+    end(end_kind::socket_error, reason);
+}
 
 void bot::check_join_timeout(clock::time_point now) {
     if (phase_ != phase::connecting && phase_ != phase::joining) return;

@@ -100,7 +100,7 @@ private:
     std::vector<protocol::BodyState> decoded_;         // the last delta's view as BodyState
     std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
 
-    world::rng fault_rng_;          // garbage bytes, from the seed and index
+    world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;
     bool fault_done_ = false;
 

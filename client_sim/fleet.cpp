@@ -47,7 +47,8 @@ fleet::fleet(asio::io_context& io, options opts)
 fleet::~fleet() = default;
 
 std::uint64_t fleet::now_ns() const {
-    return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(clock::now() - start_).count());
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(clock::now() - start_).count());
 }
 
 void fleet::count_in(std::size_t bytes) {
@@ -89,8 +90,8 @@ asio::awaitable<void> fleet::run() {
     end_ = start_ + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(opts_.duration));
     asio::ip::tcp::resolver resolver(io_);
     asio::error_code ec;
-    const auto results = co_await resolver.async_resolve(opts_.host, std::to_string(opts_.port),
-                                                         redirect_error(use_awaitable, ec));
+    const auto results =
+        co_await resolver.async_resolve(opts_.host, std::to_string(opts_.port), redirect_error(use_awaitable, ec));
     if (ec || results.empty()) {
         const std::string reason = "cannot resolve " + opts_.host + ": " + (ec ? ec.message() : "no address");
         std::fprintf(stderr, "arena-bots: %s\n", reason.c_str());
@@ -159,8 +160,9 @@ asio::awaitable<void> fleet::ticker() {
         const auto now = clock::now();
         if (now > due(tick + max_catch_up_ticks)) {
             // The process lagged (overloaded machine): skip to now rather than burst.
-            const auto behind = static_cast<std::uint64_t>(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(now - origin).count() * tick_rate_ / 1'000'000'000LL);
+            const auto behind =
+                static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now - origin).count() *
+                                           tick_rate_ / 1'000'000'000LL);
             metrics_.ticks_skipped += behind - tick;
             tick = behind;
         }

@@ -37,12 +37,12 @@ struct fleet_metrics {
     std::uint64_t bytes_out = 0;
     std::uint64_t snapshots = 0;
     std::uint64_t inputs_sent = 0;
-    std::uint64_t ticks_skipped = 0;  // shared ticker ticks dropped because the process lagged
-    std::uint64_t predictions_exact = 0;  // prediction errors exactly 0 (well-behaved bots)
-    std::uint64_t snapshot_bytes = 0;     // frames of every snapshot received, bytes
-    std::uint64_t view_bodies = 0;        // bodies those snapshots held
-    std::uint64_t delta_snapshots = 0;    // snapshots that came as deltas (against a baseline or not)
-    std::uint64_t delta_errors = 0;       // deltas that did not decode (a server bug; the bot recovers)
+    std::uint64_t ticks_skipped = 0;        // shared ticker ticks dropped because the process lagged
+    std::uint64_t predictions_exact = 0;    // prediction errors exactly 0 (well-behaved bots)
+    std::uint64_t snapshot_bytes = 0;       // frames of every snapshot received, bytes
+    std::uint64_t view_bodies = 0;          // bodies those snapshots held
+    std::uint64_t delta_snapshots = 0;      // snapshots that came as deltas (against a baseline or not)
+    std::uint64_t delta_errors = 0;         // deltas that did not decode (a server bug; the bot recovers)
     std::uint64_t delta_payload_bytes = 0;  // the codec's bytes inside those deltas (no framing)
     std::uint64_t delta_bodies = 0;         // bodies the decoded deltas held
 
@@ -67,8 +67,8 @@ struct fleet_metrics {
     sample_set bytes_in_per_s;
     sample_set bytes_out_per_s;
 
-    tally rejects;      // every Reject received: "code: reason"
-    tally disconnects;  // every connection that ended before the run did, by reason
+    tally rejects;         // every Reject received: "code: reason"
+    tally disconnects;     // every connection that ended before the run did, by reason
     tally delta_problems;  // why deltas did not decode
 };
 

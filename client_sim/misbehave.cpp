@@ -28,13 +28,20 @@ std::optional<misbehavior> parse_misbehavior(std::string_view name) {
 
 std::string_view to_string(misbehavior mode) {
     switch (mode) {
-        case misbehavior::none: return "none";
-        case misbehavior::garbage: return "garbage";
-        case misbehavior::oversize: return "oversize";
-        case misbehavior::nan: return "nan";
-        case misbehavior::slow_reader: return "slow-reader";
-        case misbehavior::flood: return "flood";
-        case misbehavior::abrupt_close: return "abrupt-close";
+        case misbehavior::none:
+            return "none";
+        case misbehavior::garbage:
+            return "garbage";
+        case misbehavior::oversize:
+            return "oversize";
+        case misbehavior::nan:
+            return "nan";
+        case misbehavior::slow_reader:
+            return "slow-reader";
+        case misbehavior::flood:
+            return "flood";
+        case misbehavior::abrupt_close:
+            return "abrupt-close";
     }
     return "unknown";
 }

@@ -10,8 +10,7 @@
 namespace arena::bots {
 
 int parse_options(int argc, char** argv, options& out) {
-    CLI::App app{"Simulated Arena players: N bots over N TCP connections, with client-side prediction",
-                 "arena-bots"};
+    CLI::App app{"Simulated Arena players: N bots over N TCP connections, with client-side prediction", "arena-bots"};
     std::string behavior_name = "mixed";
     std::string misbehave_name = "none";
     app.add_option("--host", out.host, "server address")->capture_default_str();

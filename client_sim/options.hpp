@@ -14,21 +14,21 @@ struct options {
     std::string host = "127.0.0.1";
     std::uint16_t port = 7777;
     std::uint32_t bots = 10;
-    double duration = 10;           // s, from the first connection attempt to the Byes
+    double duration = 10;  // s, from the first connection attempt to the Byes
     behavior_choice behavior = behavior_choice::mixed;
     std::uint64_t seed = 1;
-    double connect_rate = 200;      // new connections per second; 0 = all at once
-    std::string json;               // summary as JSON to this file; empty = none
+    double connect_rate = 200;  // new connections per second; 0 = all at once
+    std::string json;           // summary as JSON to this file; empty = none
     misbehavior misbehave = misbehavior::none;
-    double misbehave_share = 0.1;   // [0, 1], of the bots, when misbehave != none
+    double misbehave_share = 0.1;  // [0, 1], of the bots, when misbehave != none
     std::string name_prefix = "bot";
-    std::string token;              // Hello.token of every bot (an open server's reconnection key)
+    std::string token;  // Hello.token of every bot (an open server's reconnection key)
     // --token-secret FILE: each bot mints its own signed token naming it (load tests of a
     // server that runs with the same secret).
     std::optional<auth::token_secret> token_secret;
-    bool quiet = false;             // no progress lines
-    double join_timeout = 10;       // s from launch to Welcome before a bot gives up
-    bool full_snapshots = false;    // do not ask for delta snapshots (the simple client's path)
+    bool quiet = false;           // no progress lines
+    double join_timeout = 10;     // s from launch to Welcome before a bot gives up
+    bool full_snapshots = false;  // do not ask for delta snapshots (the simple client's path)
 };
 
 // Parses argv into `out`. Returns -1 when the program should go on, else its exit code

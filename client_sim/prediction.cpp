@@ -36,7 +36,9 @@ predictor::predictor(const world::world_config& server_config, std::uint32_t ent
     pending_.reserve(64);
 }
 
-const world::body* predictor::body() const { return placed_ ? predicted_.find(entity_id_) : nullptr; }
+const world::body* predictor::body() const {
+    return placed_ ? predicted_.find(entity_id_) : nullptr;
+}
 
 void predictor::step(world::world& w, const world::player_input& input) {
     inputs_[0].input = input;

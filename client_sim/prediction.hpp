@@ -37,9 +37,9 @@ public:
         ahead,      // ack_sequence of an input never sent: the server broke the protocol
     };
     struct correction {
-        bool own_found = false;               // the snapshot held our body
-        std::optional<float> error;           // m, for input ack_sequence, when it was predicted
-        std::uint32_t replayed = 0;           // unacknowledged inputs replayed on top
+        bool own_found = false;      // the snapshot held our body
+        std::optional<float> error;  // m, for input ack_sequence, when it was predicted
+        std::uint32_t replayed = 0;  // unacknowledged inputs replayed on top
         ack_problem problem = ack_problem::none;
     };
     // A snapshot arrived. own: our body's state in it, null when absent.
@@ -63,7 +63,7 @@ private:
     struct pending_input {
         std::uint32_t sequence = 0;
         world::player_input input{};
-        bool predicted = false;     // sent after the body was placed: `position` is meaningful
+        bool predicted = false;      // sent after the body was placed: `position` is meaningful
         world::vec2 position{0, 0};  // m, as predicted when sent
     };
 

@@ -22,7 +22,8 @@ void append_tally(std::string& out, const char* title, const tally& t) {
     if (t.empty()) return;
     out += title;
     out += ":\n";
-    for (const auto& [reason, count] : t) out += format("  %6llu  %s\n", static_cast<unsigned long long>(count), reason.c_str());
+    for (const auto& [reason, count] : t)
+        out += format("  %6llu  %s\n", static_cast<unsigned long long>(count), reason.c_str());
 }
 
 }  // namespace
@@ -83,21 +84,22 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     return r;
 }
 
-std::string progress_line(double t, std::uint32_t playing, std::uint32_t bots, double interval_s,
-                          fleet_metrics& m) {
+std::string progress_line(double t, std::uint32_t playing, std::uint32_t bots, double interval_s, fleet_metrics& m) {
     const double per_s = interval_s > 0 ? 1.0 / interval_s : 0.0;
     const summary rtt = m.interval_rtt_ms.summarize();
     const summary err = m.interval_prediction_error_m.summarize();
-    return format("t=%.0fs bots=%u/%u snapshots/s=%.0f rtt_ms_p50=%.2f rtt_ms_p99=%.2f pred_err_m_p99=%.4f "
-                  "bytes_in/s=%.0f bytes_out/s=%.0f",
-                  t, playing, bots, static_cast<double>(m.interval_snapshots) * per_s, rtt.p50, rtt.p99, err.p99,
-                  static_cast<double>(m.interval_bytes_in) * per_s, static_cast<double>(m.interval_bytes_out) * per_s);
+    return format(
+        "t=%.0fs bots=%u/%u snapshots/s=%.0f rtt_ms_p50=%.2f rtt_ms_p99=%.2f pred_err_m_p99=%.4f "
+        "bytes_in/s=%.0f bytes_out/s=%.0f",
+        t, playing, bots, static_cast<double>(m.interval_snapshots) * per_s, rtt.p50, rtt.p99, err.p99,
+        static_cast<double>(m.interval_bytes_in) * per_s, static_cast<double>(m.interval_bytes_out) * per_s);
 }
 
 std::string summary_table(const final_report& r) {
-    std::string out = format("arena-bots: %u bots, %u joined, %u failed, %u ended early, %u misbehaving (%u dropped), "
-                             "%.1f s\n",
-                             r.bots, r.joined, r.failed, r.ended_early, r.misbehaving, r.misbehaving_dropped, r.seconds);
+    std::string out = format(
+        "arena-bots: %u bots, %u joined, %u failed, %u ended early, %u misbehaving (%u dropped), "
+        "%.1f s\n",
+        r.bots, r.joined, r.failed, r.ended_early, r.misbehaving, r.misbehaving_dropped, r.seconds);
     out += format("%-26s %9s %12s %12s %12s %12s %12s\n", "figure", "count", "mean", "min", "p50", "p99", "max");
     for (const auto& [name, s] : r.figures) {
         out += format("%-26s %9zu %12.4f %12.4f %12.4f %12.4f %12.4f\n", name.c_str(), s.count, s.mean, s.min, s.p50,
@@ -108,10 +110,11 @@ std::string summary_table(const final_report& r) {
                   static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
                   static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
                   static_cast<unsigned long long>(r.ticks_skipped));
-    out += format("snapshots: %llu deltas (%llu did not decode), %.2f bytes per body in view (frames), "
-                  "%.2f (delta payload)\n",
-                  static_cast<unsigned long long>(r.delta_snapshots), static_cast<unsigned long long>(r.delta_errors),
-                  r.bytes_per_body, r.delta_payload_bytes_per_body);
+    out += format(
+        "snapshots: %llu deltas (%llu did not decode), %.2f bytes per body in view (frames), "
+        "%.2f (delta payload)\n",
+        static_cast<unsigned long long>(r.delta_snapshots), static_cast<unsigned long long>(r.delta_errors),
+        r.bytes_per_body, r.delta_payload_bytes_per_body);
     append_tally(out, "rejects", r.rejects);
     append_tally(out, "delta problems", r.delta_problems);
     append_tally(out, "disconnects", r.disconnects);

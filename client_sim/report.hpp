@@ -17,7 +17,7 @@ struct final_report {
     double seconds = 0;  // wall time of the run
     std::uint32_t bots = 0;
     std::uint32_t joined = 0;
-    std::uint32_t failed = 0;  // well-behaved bots that did not join, or lost their session
+    std::uint32_t failed = 0;       // well-behaved bots that did not join, or lost their session
     std::uint32_t ended_early = 0;  // well-behaved sessions that ended before the run (any reason)
     std::uint32_t misbehaving = 0;
     std::uint32_t misbehaving_dropped = 0;  // misbehaving bots whose session the server ended
@@ -31,14 +31,14 @@ struct final_report {
     std::uint64_t view_bodies = 0;      // bodies in those snapshots
     std::uint64_t delta_snapshots = 0;
     std::uint64_t delta_errors = 0;
-    double bytes_per_body = 0;          // snapshot_bytes / view_bodies
+    double bytes_per_body = 0;                // snapshot_bytes / view_bodies
     double delta_payload_bytes_per_body = 0;  // the codec's bytes alone, per body, over the deltas
     tally delta_problems;
     std::vector<std::pair<std::string, summary>> figures;  // in table order
     tally rejects;
     tally disconnects;
-    tally failures;            // reason of each failed well-behaved bot
-    tally misbehaving_drops;   // reason each misbehaving bot's session ended
+    tally failures;           // reason of each failed well-behaved bot
+    tally misbehaving_drops;  // reason each misbehaving bot's session ended
     // 0: every well-behaved bot joined, kept its session and met no protocol error; else 1.
     int exit_code = 0;
 };

@@ -7,99 +7,99 @@ namespace arena::protocol {
 namespace {
 
 std::string to_string(const flatbuffers::String* s) {
-  return s == nullptr ? std::string() : s->str();
+    return s == nullptr ? std::string() : s->str();
 }
 
 // The reason for a message of the wrong type (payload_as<T>() returned null).
 std::string unexpected(const Message& message, Payload wanted) {
-  return "expected " + std::string(payload_name(wanted)) + ", got " +
-         std::string(payload_name(message.payload_type()));
+    return "expected " + std::string(payload_name(wanted)) + ", got " +
+           std::string(payload_name(message.payload_type()));
 }
 
 }  // namespace
 
 std::string_view payload_name(Payload type) noexcept {
-  const auto v = static_cast<std::uint8_t>(type);
-  if (v > static_cast<std::uint8_t>(Payload::MAX)) return "unknown";
-  return EnumNamePayload(type);
+    const auto v = static_cast<std::uint8_t>(type);
+    if (v > static_cast<std::uint8_t>(Payload::MAX)) return "unknown";
+    return EnumNamePayload(type);
 }
 
 result<hello_msg> decode_hello(const Message& message) {
-  const auto* t = message.payload_as<Hello>();
-  if (t == nullptr) return result<hello_msg>::failure(unexpected(message, Payload::Hello));
-  return result<hello_msg>::success(
-      {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots()});
+    const auto* t = message.payload_as<Hello>();
+    if (t == nullptr) return result<hello_msg>::failure(unexpected(message, Payload::Hello));
+    return result<hello_msg>::success(
+        {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots()});
 }
 
 result<welcome_info> decode_welcome(const Message& message) {
-  const auto* t = message.payload_as<Welcome>();
-  if (t == nullptr) return result<welcome_info>::failure(unexpected(message, Payload::Welcome));
-  welcome_info w;
-  w.player_id = t->player_id();
-  w.entity_id = t->entity_id();
-  w.tick = t->tick();
-  w.tick_rate = t->tick_rate();
-  w.snapshot_rate = t->snapshot_rate();
-  w.preset = to_string(t->preset());
-  w.world_config = to_string(t->world_config());
-  w.world_config_hash = t->world_config_hash();
-  w.world_version = t->world_version();
-  w.view_radius = t->view_radius();
-  return result<welcome_info>::success(std::move(w));
+    const auto* t = message.payload_as<Welcome>();
+    if (t == nullptr) return result<welcome_info>::failure(unexpected(message, Payload::Welcome));
+    welcome_info w;
+    w.player_id = t->player_id();
+    w.entity_id = t->entity_id();
+    w.tick = t->tick();
+    w.tick_rate = t->tick_rate();
+    w.snapshot_rate = t->snapshot_rate();
+    w.preset = to_string(t->preset());
+    w.world_config = to_string(t->world_config());
+    w.world_config_hash = t->world_config_hash();
+    w.world_version = t->world_version();
+    w.view_radius = t->view_radius();
+    return result<welcome_info>::success(std::move(w));
 }
 
 result<reject_msg> decode_reject(const Message& message) {
-  const auto* t = message.payload_as<Reject>();
-  if (t == nullptr) return result<reject_msg>::failure(unexpected(message, Payload::Reject));
-  // An unknown code (from a newer server) is kept as is: the reason text still explains it.
-  return result<reject_msg>::success({t->code(), to_string(t->reason())});
+    const auto* t = message.payload_as<Reject>();
+    if (t == nullptr) return result<reject_msg>::failure(unexpected(message, Payload::Reject));
+    // An unknown code (from a newer server) is kept as is: the reason text still explains it.
+    return result<reject_msg>::success({t->code(), to_string(t->reason())});
 }
 
 result<input_msg> decode_input(const Message& message) {
-  const auto* t = message.payload_as<Input>();
-  if (t == nullptr) return result<input_msg>::failure(unexpected(message, Payload::Input));
-  const input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons(), t->snapshot_ack()};
-  if (!std::isfinite(in.thrust)) {
-    return result<input_msg>::failure("Input.thrust is not finite");
-  }
-  if (!std::isfinite(in.turn)) {
-    return result<input_msg>::failure("Input.turn is not finite");
-  }
-  return result<input_msg>::success(in);
+    const auto* t = message.payload_as<Input>();
+    if (t == nullptr) return result<input_msg>::failure(unexpected(message, Payload::Input));
+    const input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons(), t->snapshot_ack()};
+    if (!std::isfinite(in.thrust)) {
+        return result<input_msg>::failure("Input.thrust is not finite");
+    }
+    if (!std::isfinite(in.turn)) {
+        return result<input_msg>::failure("Input.turn is not finite");
+    }
+    return result<input_msg>::success(in);
 }
 
 result<ping_msg> decode_ping(const Message& message) {
-  const auto* t = message.payload_as<Ping>();
-  if (t == nullptr) return result<ping_msg>::failure(unexpected(message, Payload::Ping));
-  return result<ping_msg>::success({t->client_time()});
+    const auto* t = message.payload_as<Ping>();
+    if (t == nullptr) return result<ping_msg>::failure(unexpected(message, Payload::Ping));
+    return result<ping_msg>::success({t->client_time()});
 }
 
 result<pong_msg> decode_pong(const Message& message) {
-  const auto* t = message.payload_as<Pong>();
-  if (t == nullptr) return result<pong_msg>::failure(unexpected(message, Payload::Pong));
-  return result<pong_msg>::success({t->client_time(), t->server_tick()});
+    const auto* t = message.payload_as<Pong>();
+    if (t == nullptr) return result<pong_msg>::failure(unexpected(message, Payload::Pong));
+    return result<pong_msg>::success({t->client_time(), t->server_tick()});
 }
 
 result<bye_msg> decode_bye(const Message& message) {
-  const auto* t = message.payload_as<Bye>();
-  if (t == nullptr) return result<bye_msg>::failure(unexpected(message, Payload::Bye));
-  return result<bye_msg>::success({to_string(t->reason())});
+    const auto* t = message.payload_as<Bye>();
+    if (t == nullptr) return result<bye_msg>::failure(unexpected(message, Payload::Bye));
+    return result<bye_msg>::success({to_string(t->reason())});
 }
 
 result<snapshot_view> decode_snapshot(const Message& message) {
-  const auto* t = message.payload_as<Snapshot>();
-  if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
-  snapshot_view view{t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false};
-  if (const auto* delta = t->delta(); delta != nullptr) {
-    view.is_delta = true;
-    view.delta = {delta->data(), delta->size()};
-  }
-  if (const auto* bodies = t->bodies(); bodies != nullptr && bodies->size() > 0) {
-    // The Verifier checked the vector lies inside the frame, 4-byte aligned as BodyState
-    // requires; structs are stored exactly as the C++ type lays them out.
-    view.bodies = {reinterpret_cast<const BodyState*>(bodies->Data()), bodies->size()};
-  }
-  return result<snapshot_view>::success(view);
+    const auto* t = message.payload_as<Snapshot>();
+    if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
+    snapshot_view view{t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false};
+    if (const auto* delta = t->delta(); delta != nullptr) {
+        view.is_delta = true;
+        view.delta = {delta->data(), delta->size()};
+    }
+    if (const auto* bodies = t->bodies(); bodies != nullptr && bodies->size() > 0) {
+        // The Verifier checked the vector lies inside the frame, 4-byte aligned as BodyState
+        // requires; structs are stored exactly as the C++ type lays them out.
+        view.bodies = {reinterpret_cast<const BodyState*>(bodies->Data()), bodies->size()};
+    }
+    return result<snapshot_view>::success(view);
 }
 
 }  // namespace arena::protocol

@@ -24,12 +24,12 @@ namespace arena::protocol {
 // A snapshot read in place: bodies points into the verified frame (no copy), so the view
 // is valid as long as the frame's storage is.
 struct snapshot_view {
-  std::uint32_t tick = 0;
-  std::uint32_t ack_sequence = 0;
-  std::span<const BodyState> bodies;
-  std::uint32_t baseline_tick = 0;      // delta: the view it is encoded against; 0 = none
-  std::span<const std::uint8_t> delta;  // the codec's bytes (protocol/delta/codec.hpp)
-  bool is_delta = false;                // the Snapshot carries `delta` (empty bodies)
+    std::uint32_t tick = 0;
+    std::uint32_t ack_sequence = 0;
+    std::span<const BodyState> bodies;
+    std::uint32_t baseline_tick = 0;      // delta: the view it is encoded against; 0 = none
+    std::span<const std::uint8_t> delta;  // the codec's bytes (protocol/delta/codec.hpp)
+    bool is_delta = false;                // the Snapshot carries `delta` (empty bodies)
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 

@@ -5,80 +5,74 @@
 namespace arena::protocol {
 namespace {
 
-flatbuffers::Offset<flatbuffers::String> make_string(flatbuffers::FlatBufferBuilder& fbb,
-                                                     std::string_view s) {
-  // An empty string_view may carry a null pointer; memcpy from null is undefined even for 0 bytes.
-  return s.empty() ? fbb.CreateString("", 0) : fbb.CreateString(s.data(), s.size());
+flatbuffers::Offset<flatbuffers::String> make_string(flatbuffers::FlatBufferBuilder& fbb, std::string_view s) {
+    // An empty string_view may carry a null pointer; memcpy from null is undefined even for 0 bytes.
+    return s.empty() ? fbb.CreateString("", 0) : fbb.CreateString(s.data(), s.size());
 }
 
 // Small messages: a fresh builder each, its first block sized for a typical message.
 constexpr std::size_t small_message_bytes = 128;
 
 frame_bytes to_frame(const flatbuffers::FlatBufferBuilder& fbb) {
-  return frame_bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+    return frame_bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
 }
 
 }  // namespace
 
-void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type,
-                    flatbuffers::Offset<void> payload) {
-  fbb.FinishSizePrefixed(CreateMessage(fbb, type, payload), file_identifier);
+void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type, flatbuffers::Offset<void> payload) {
+    fbb.FinishSizePrefixed(CreateMessage(fbb, type, payload), file_identifier);
 }
 
-frame_bytes encode_hello(std::uint16_t version, std::string_view name,
-                         std::string_view token, bool delta_snapshots) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes + name.size() + token.size());
-  const auto name_offset = make_string(fbb, name);
-  const auto token_offset = make_string(fbb, token);
-  finish_message(fbb, Payload::Hello,
-                 CreateHello(fbb, version, name_offset, token_offset, delta_snapshots).Union());
-  return to_frame(fbb);
+frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token, bool delta_snapshots) {
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + name.size() + token.size());
+    const auto name_offset = make_string(fbb, name);
+    const auto token_offset = make_string(fbb, token);
+    finish_message(fbb, Payload::Hello, CreateHello(fbb, version, name_offset, token_offset, delta_snapshots).Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_welcome(const welcome_info& w) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes + w.preset.size() +
-                                     w.world_config.size());
-  const auto preset = make_string(fbb, w.preset);
-  const auto config = make_string(fbb, w.world_config);
-  finish_message(fbb, Payload::Welcome,
-                 CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate,
-                               w.snapshot_rate, preset, config, w.world_config_hash,
-                               w.world_version, w.view_radius)
-                     .Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + w.preset.size() + w.world_config.size());
+    const auto preset = make_string(fbb, w.preset);
+    const auto config = make_string(fbb, w.world_config);
+    finish_message(fbb, Payload::Welcome,
+                   CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate, w.snapshot_rate, preset, config,
+                                 w.world_config_hash, w.world_version, w.view_radius)
+                       .Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_reject(RejectCode code, std::string_view reason) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes + reason.size());
-  const auto text = make_string(fbb, reason);
-  finish_message(fbb, Payload::Reject, CreateReject(fbb, code, text).Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + reason.size());
+    const auto text = make_string(fbb, reason);
+    finish_message(fbb, Payload::Reject, CreateReject(fbb, code, text).Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_input(const input_msg& in) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
-  finish_message(fbb, Payload::Input,
-                 CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack).Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
+    finish_message(fbb, Payload::Input,
+                   CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack).Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_ping(std::uint64_t client_time) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
-  finish_message(fbb, Payload::Ping, CreatePing(fbb, client_time).Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
+    finish_message(fbb, Payload::Ping, CreatePing(fbb, client_time).Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
-  finish_message(fbb, Payload::Pong, CreatePong(fbb, client_time, server_tick).Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
+    finish_message(fbb, Payload::Pong, CreatePong(fbb, client_time, server_tick).Union());
+    return to_frame(fbb);
 }
 
 frame_bytes encode_bye(std::string_view reason) {
-  flatbuffers::FlatBufferBuilder fbb(small_message_bytes + reason.size());
-  const auto text = make_string(fbb, reason);
-  finish_message(fbb, Payload::Bye, CreateBye(fbb, text).Union());
-  return to_frame(fbb);
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + reason.size());
+    const auto text = make_string(fbb, reason);
+    finish_message(fbb, Payload::Bye, CreateBye(fbb, text).Union());
+    return to_frame(fbb);
 }
 
 }  // namespace arena::protocol

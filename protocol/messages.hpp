@@ -15,63 +15,63 @@ namespace arena::protocol {
 using frame_bytes = std::vector<std::uint8_t>;
 
 struct hello_msg {
-  std::uint16_t protocol_version = 0;
-  std::string name;   // UTF-8
-  std::string token;  // opaque
-  bool delta_snapshots = false;  // the client decodes delta snapshots
-  bool operator==(const hello_msg&) const = default;
+    std::uint16_t protocol_version = 0;
+    std::string name;              // UTF-8
+    std::string token;             // opaque
+    bool delta_snapshots = false;  // the client decodes delta snapshots
+    bool operator==(const hello_msg&) const = default;
 };
 
 struct welcome_info {
-  std::uint32_t player_id = 0;
-  std::uint32_t entity_id = 0;
-  std::uint32_t tick = 0;
-  std::uint16_t tick_rate = 0;          // ticks per second
-  std::uint16_t snapshot_rate = 0;      // snapshots per second
-  std::string preset;
-  std::string world_config;             // JSON, the --config format
-  std::uint64_t world_config_hash = 0;  // world_config_hash(world_config), config_hash.hpp
-  std::uint32_t world_version = 0;
-  float view_radius = 0.0f;             // m; 0 = the whole world
-  bool operator==(const welcome_info&) const = default;
+    std::uint32_t player_id = 0;
+    std::uint32_t entity_id = 0;
+    std::uint32_t tick = 0;
+    std::uint16_t tick_rate = 0;      // ticks per second
+    std::uint16_t snapshot_rate = 0;  // snapshots per second
+    std::string preset;
+    std::string world_config;             // JSON, the --config format
+    std::uint64_t world_config_hash = 0;  // world_config_hash(world_config), config_hash.hpp
+    std::uint32_t world_version = 0;
+    float view_radius = 0.0f;  // m; 0 = the whole world
+    bool operator==(const welcome_info&) const = default;
 };
 
 struct reject_msg {
-  RejectCode code = RejectCode::bad_request;
-  std::string reason;
-  bool operator==(const reject_msg&) const = default;
+    RejectCode code = RejectCode::bad_request;
+    std::string reason;
+    bool operator==(const reject_msg&) const = default;
 };
 
 struct input_msg {
-  std::uint32_t sequence = 0;
-  float thrust = 0.0f;  // [-1, 1]
-  float turn = 0.0f;    // [-1, 1]
-  std::uint8_t buttons = 0;  // bit 0 = impulse/jump
-  std::uint32_t snapshot_ack = 0;  // newest delta snapshot tick decoded; 0 = none
-  bool operator==(const input_msg&) const = default;
+    std::uint32_t sequence = 0;
+    float thrust = 0.0f;             // [-1, 1]
+    float turn = 0.0f;               // [-1, 1]
+    std::uint8_t buttons = 0;        // bit 0 = impulse/jump
+    std::uint32_t snapshot_ack = 0;  // newest delta snapshot tick decoded; 0 = none
+    bool operator==(const input_msg&) const = default;
 };
 
 struct ping_msg {
-  std::uint64_t client_time = 0;
-  bool operator==(const ping_msg&) const = default;
+    std::uint64_t client_time = 0;
+    bool operator==(const ping_msg&) const = default;
 };
 
 struct pong_msg {
-  std::uint64_t client_time = 0;
-  std::uint32_t server_tick = 0;
-  bool operator==(const pong_msg&) const = default;
+    std::uint64_t client_time = 0;
+    std::uint32_t server_tick = 0;
+    bool operator==(const pong_msg&) const = default;
 };
 
 struct bye_msg {
-  std::string reason;
-  bool operator==(const bye_msg&) const = default;
+    std::string reason;
+    bool operator==(const bye_msg&) const = default;
 };
 
 // Input bits.
 inline constexpr std::uint8_t button_impulse = 1u << 0;
 
-[[nodiscard]] frame_bytes encode_hello(std::uint16_t version, std::string_view name,
-                                       std::string_view token, bool delta_snapshots = false);
+[[nodiscard]] frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token,
+                                       bool delta_snapshots = false);
 [[nodiscard]] frame_bytes encode_welcome(const welcome_info& welcome);
 [[nodiscard]] frame_bytes encode_reject(RejectCode code, std::string_view reason);
 [[nodiscard]] frame_bytes encode_input(const input_msg& input);
@@ -81,7 +81,6 @@ inline constexpr std::uint8_t button_impulse = 1u << 0;
 
 // Wraps a finished payload table in a Message and finishes the buffer size-prefixed with
 // the file identifier. For builders that encode into a caller-owned FlatBufferBuilder.
-void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type,
-                    flatbuffers::Offset<void> payload);
+void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type, flatbuffers::Offset<void> payload);
 
 }  // namespace arena::protocol

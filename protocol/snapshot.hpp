@@ -12,34 +12,32 @@ namespace arena::protocol {
 
 // Clears fbb and encodes one finished Snapshot frame into it. Returns the frame, which lives
 // in fbb and stays valid until fbb is next cleared or destroyed.
-std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb,
-                                              std::uint32_t tick, std::uint32_t ack_sequence,
-                                              std::span<const BodyState> bodies);
+std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
+                                              std::uint32_t ack_sequence, std::span<const BodyState> bodies);
 
 // Clears fbb and encodes one client's delta Snapshot frame (empty bodies; `delta` holds the
 // codec's bytes, protocol/delta/codec.hpp). baseline_tick 0: encoded without a baseline.
-std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb,
-                                                    std::uint32_t tick, std::uint32_t ack_sequence,
-                                                    std::uint32_t baseline_tick,
+std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
+                                                    std::uint32_t ack_sequence, std::uint32_t baseline_tick,
                                                     std::span<const std::uint8_t> delta);
 
 // Encodes a tick's snapshot once; each client's copy differs only in ack_sequence, which is
 // patched into the copy in place. Cost per client: one memcpy of the frame.
 class snapshot_encoder {
- public:
-  // bodies: every body, in increasing id order. Replaces the previous tick's frame.
-  void build(std::uint32_t tick, std::span<const BodyState> bodies);
+public:
+    // bodies: every body, in increasing id order. Replaces the previous tick's frame.
+    void build(std::uint32_t tick, std::span<const BodyState> bodies);
 
-  // The built frame with ack_sequence 0. Valid until the next build().
-  [[nodiscard]] std::span<const std::uint8_t> frame() const noexcept;
+    // The built frame with ack_sequence 0. Valid until the next build().
+    [[nodiscard]] std::span<const std::uint8_t> frame() const noexcept;
 
-  // Copies the frame into out (reusing its capacity) with ack_sequence set.
-  void copy_with_ack(std::uint32_t ack_sequence, std::vector<std::uint8_t>& out) const;
-  [[nodiscard]] std::vector<std::uint8_t> frame_with_ack(std::uint32_t ack_sequence) const;
+    // Copies the frame into out (reusing its capacity) with ack_sequence set.
+    void copy_with_ack(std::uint32_t ack_sequence, std::vector<std::uint8_t>& out) const;
+    [[nodiscard]] std::vector<std::uint8_t> frame_with_ack(std::uint32_t ack_sequence) const;
 
- private:
-  flatbuffers::FlatBufferBuilder fbb_{1024};
-  bool built_ = false;
+private:
+    flatbuffers::FlatBufferBuilder fbb_{1024};
+    bool built_ = false;
 };
 
 }  // namespace arena::protocol

@@ -12,12 +12,12 @@
 namespace arena::protocol {
 
 struct verify_limits {
-  std::uint32_t max_body = max_client_frame_body;  // bytes after the prefix
-  // A valid Message is two tables deep (Message -> payload table; vectors and strings do
-  // not count). Tight limits make the Verifier's work proportional to the frame size;
-  // raise them only when the schema gains nested tables.
-  std::uint32_t max_depth = 4;
-  std::uint32_t max_tables = 4;
+    std::uint32_t max_body = max_client_frame_body;  // bytes after the prefix
+    // A valid Message is two tables deep (Message -> payload table; vectors and strings do
+    // not count). Tight limits make the Verifier's work proportional to the frame size;
+    // raise them only when the schema gains nested tables.
+    std::uint32_t max_depth = 4;
+    std::uint32_t max_tables = 4;
 };
 
 // What a server applies to frames from clients, and a client to frames from the server.

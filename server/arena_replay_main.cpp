@@ -24,8 +24,8 @@ void print_state(const world::world& w) {
     // %.9g: enough digits that every float reads back to the same bits.
     for (const world::body& b : w.bodies()) {
         std::printf("%" PRIu32 ",%" PRIu32 ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%" PRIu32 "\n", b.id, b.owner,
-                    b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle, b.angular_velocity,
-                    b.mass, b.radius, b.impulse_cooldown);
+                    b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle, b.angular_velocity, b.mass,
+                    b.radius, b.impulse_cooldown);
     }
 }
 
@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     bool dump_hashes = false, state = false;
     uint32_t until = 0;
     app.add_option("file", path, "replay file written by arena-server --record")->required();
-    app.add_flag("--dump-hashes", dump_hashes, "print tick,hash (16 hex digits) for the start tick and every tick after");
+    app.add_flag("--dump-hashes", dump_hashes,
+                 "print tick,hash (16 hex digits) for the start tick and every tick after");
     auto* until_opt = app.add_option("--until", until, "stop when the world reaches this tick");
     app.add_flag("--state", state, "print every body where the replay stops (see --until), as CSV");
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
@@ -65,7 +66,9 @@ int main(int argc, char** argv) {
     if (until_opt->count() > 0) options.until = until;
     if (dump_hashes) {
         std::printf("tick,hash\n");
-        options.on_tick = [](uint32_t tick, uint64_t hash) { std::printf("%" PRIu32 ",%016" PRIx64 "\n", tick, hash); };
+        options.on_tick = [](uint32_t tick, uint64_t hash) {
+            std::printf("%" PRIu32 ",%016" PRIx64 "\n", tick, hash);
+        };
     }
     const auto start = std::chrono::steady_clock::now();
     const replay::replay_report report = rp.run(options);
@@ -77,7 +80,9 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     if (report.mismatch) {
         const replay::hash_mismatch& m = *report.mismatch;
-        std::fprintf(stderr, "arena-replay: %s: tick %" PRIu32 ": hash mismatch: expected %016" PRIx64 ", actual %016" PRIx64 "\n",
+        std::fprintf(stderr,
+                     "arena-replay: %s: tick %" PRIu32 ": hash mismatch: expected %016" PRIx64 ", actual %016" PRIx64
+                     "\n",
                      path.c_str(), m.tick, m.expected, m.actual);
         return exit_mismatch;
     }

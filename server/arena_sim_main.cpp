@@ -49,7 +49,9 @@ int write_plot(const sim::single_body_scenario& base, const std::string& path) {
     // Which axis moves most decides what the chart shows.
     const auto coarse = sim::run_scenario(base);
     const bool along_y = !coarse.empty() && std::fabs(coarse.back().y) > std::fabs(coarse.back().x);
-    auto pick = [along_y](const sim::sample& r) { return static_cast<double>(along_y ? r.y : r.x); };
+    auto pick = [along_y](const sim::sample& r) {
+        return static_cast<double>(along_y ? r.y : r.x);
+    };
 
     std::vector<sim::series> lines;
     for (int divide : {1, 2, 4, 10}) {
@@ -84,7 +86,8 @@ int write_plot(const sim::single_body_scenario& base, const std::string& path) {
         }
     }
     lines.push_back(truth);
-    const char* method = base.integrator == world::integrator::explicit_euler ? "explicit Euler" : "semi-implicit Euler";
+    const char* method =
+        base.integrator == world::integrator::explicit_euler ? "explicit Euler" : "semi-implicit Euler";
     std::ofstream out(path);
     out << sim::render_svg(std::string("Impact of delta time: ") + method, "t (s)", along_y ? "y (m)" : "x (m)", lines);
     if (!out) {

@@ -33,7 +33,8 @@ inline CLI::Option* add_vec2_option(CLI::App& app, const std::string& name, worl
         .add_option_function<std::string>(
             name,
             [&target, name](const std::string& text) {
-                if (!parse_vec2(text, target)) throw CLI::ValidationError(name, "expected X,Y (two finite numbers), got '" + text + "'");
+                if (!parse_vec2(text, target))
+                    throw CLI::ValidationError(name, "expected X,Y (two finite numbers), got '" + text + "'");
             },
             help)
         ->type_name("X,Y");

@@ -23,26 +23,33 @@ int main(int argc, char** argv) {
     double handshake_s = 5, stall_s = 5;
     app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
     app.add_option("--port", options.port, "TCP port (default 7777; 0 picks a free one)");
-    app.add_option("--tick-rate", options.game.tick_rate, "world steps per second (default 60)")->check(CLI::Range(1, 1000));
-    app.add_option("--snapshot-rate", options.game.snapshot_rate, "snapshots per second (default 20)")->check(CLI::Range(1, 1000));
-    app.add_option("--max-players", options.game.max_players, "players at once (default 64)")->check(CLI::Range(1, 100000));
+    app.add_option("--tick-rate", options.game.tick_rate, "world steps per second (default 60)")
+        ->check(CLI::Range(1, 1000));
+    app.add_option("--snapshot-rate", options.game.snapshot_rate, "snapshots per second (default 20)")
+        ->check(CLI::Range(1, 1000));
+    app.add_option("--max-players", options.game.max_players, "players at once (default 64)")
+        ->check(CLI::Range(1, 100000));
     app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
     app.add_option("--seed", options.game.seed, "world seed (default 1)");
     app.add_option("--record", record, "record the session to FILE for arena-replay");
-    app.add_option("--duration", options.duration_s, "run this many seconds, then shut down cleanly (default: until a signal)")
+    app.add_option("--duration", options.duration_s,
+                   "run this many seconds, then shut down cleanly (default: until a signal)")
         ->check(cli::finite_non_negative);
     app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
-    app.add_option("--input-buffer", options.game.input_buffer, "inputs buffered per player (default 8)")->check(CLI::Range(1, 1024));
+    app.add_option("--input-buffer", options.game.input_buffer, "inputs buffered per player (default 8)")
+        ->check(CLI::Range(1, 1024));
     app.add_option("--max-inputs-per-second", options.game.max_inputs_per_second,
                    "inputs per second before a client is dropped (default 2 x tick rate + 10)");
     app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
     app.add_option("--stall-timeout", stall_s, "seconds a client may block our writes before it is dropped (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
-    app.add_option("--socket-send-buffer", options.socket_send_buffer, "kernel send buffer per client, bytes (default 262144)")
+    app.add_option("--socket-send-buffer", options.socket_send_buffer,
+                   "kernel send buffer per client, bytes (default 262144)")
         ->check(CLI::Range(4096, 64 << 20));
-    app.add_option("--max-connections", options.max_connections, "open connections at once (default 2 x max players + 16)");
+    app.add_option("--max-connections", options.max_connections,
+                   "open connections at once (default 2 x max players + 16)");
     app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
                    "connections that have not sent Hello yet (default 64)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
@@ -119,8 +126,8 @@ int main(int argc, char** argv) {
         bool recording_failed = false;
         if (!record.empty()) {
             const world::world& w = server.match().state();
-            auto opened = replay::recorder::open(
-                record, replay::make_header(w, options.game.preset, options.game.seed, options.game.tick_rate, hash_interval));
+            auto opened = replay::recorder::open(record, replay::make_header(w, options.game.preset, options.game.seed,
+                                                                             options.game.tick_rate, hash_interval));
             if (!opened) {
                 std::fprintf(stderr, "arena-server: --record: %s\n", opened.error.c_str());
                 return 2;

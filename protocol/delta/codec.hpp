@@ -22,28 +22,26 @@ using view = std::span<const quantized_body>;
 // How far the current view is ahead of the baseline, for the prediction of positions and
 // angles (README.md, "Prediction"). Both ends must pass the same values.
 struct elapsed_time {
-  std::uint32_t ticks = 0;       // current tick − baseline tick; ignored for a full snapshot
-  std::uint32_t tick_rate = 60;  // ticks per second (Welcome.tick_rate), > 0
+    std::uint32_t ticks = 0;       // current tick − baseline tick; ignored for a full snapshot
+    std::uint32_t tick_rate = 60;  // ticks per second (Welcome.tick_rate), > 0
 };
 
 // Appends the encoding of current to out (out is cleared first; its capacity is reused).
 // baseline: the view the client acknowledged, or nullopt for a full snapshot. Both views
 // must be sorted by strictly increasing id (asserted: a violation is the server's bug).
-void encode(view current, std::optional<view> baseline, elapsed_time elapsed,
-            std::vector<std::uint8_t>& out);
-[[nodiscard]] std::vector<std::uint8_t> encode(view current, std::optional<view> baseline,
-                                               elapsed_time elapsed);
+void encode(view current, std::optional<view> baseline, elapsed_time elapsed, std::vector<std::uint8_t>& out);
+[[nodiscard]] std::vector<std::uint8_t> encode(view current, std::optional<view> baseline, elapsed_time elapsed);
 
 struct decode_limits {
-  std::uint32_t max_bodies = 1u << 20;  // bodies in the decoded view; matches world max_bodies
+    std::uint32_t max_bodies = 1u << 20;  // bodies in the decoded view; matches world max_bodies
 };
 
 // What the first bytes say, without decoding the bodies: lets a client that lost its
 // baseline tell a full snapshot (decodable) from a delta (not).
 struct header_info {
-  bool has_baseline = false;
-  std::uint32_t baseline_count = 0;  // bodies the encoder's baseline had
-  std::uint32_t checksum = 0;        // view_checksum() of the encoded view
+    bool has_baseline = false;
+    std::uint32_t baseline_count = 0;  // bodies the encoder's baseline had
+    std::uint32_t checksum = 0;        // view_checksum() of the encoded view
 };
 [[nodiscard]] result<header_info> read_header(std::span<const std::uint8_t> bytes);
 
@@ -53,8 +51,7 @@ struct header_info {
 // returns a reason, never asserts, throws or reads out of bounds. baseline must be the view
 // the encoder used (for a full snapshot it is ignored) and sorted by id.
 [[nodiscard]] result<std::vector<quantized_body>> decode(std::span<const std::uint8_t> bytes,
-                                                         std::optional<view> baseline,
-                                                         elapsed_time elapsed,
+                                                         std::optional<view> baseline, elapsed_time elapsed,
                                                          const decode_limits& limits = {});
 
 // A 32-bit hash of every field of every body, in order: carried in each encoding so that a

@@ -17,17 +17,17 @@ inline constexpr unsigned checksum_bits = 32;
 // Each integer is an Exp-Golomb code whose order k the encoder picks per class and per
 // snapshot (the best for that snapshot's values) and writes in the header.
 enum code_class : unsigned {
-  gap,               // unchanged baseline bodies before the next touched one
-  velocity,          // zigzag(v − baseline v), per axis
-  angular_velocity,  // zigzag(ω − baseline ω)
-  position,          // zigzag(x − predicted x), per axis
-  angle,             // zigzag(angle − predicted angle), wrapped to int16
-  id_gap,            // added body: id − previous added id − 1 (the first: id)
-  owner,             // added body, or a baseline body whose owner changed
-  full_position,     // added body: zigzag(x), zigzag(y)
-  full_velocity,     // added body: zigzag(vx), zigzag(vy)
-  full_angular_velocity,
-  class_count
+    gap,               // unchanged baseline bodies before the next touched one
+    velocity,          // zigzag(v − baseline v), per axis
+    angular_velocity,  // zigzag(ω − baseline ω)
+    position,          // zigzag(x − predicted x), per axis
+    angle,             // zigzag(angle − predicted angle), wrapped to int16
+    id_gap,            // added body: id − previous added id − 1 (the first: id)
+    owner,             // added body, or a baseline body whose owner changed
+    full_position,     // added body: zigzag(x), zigzag(y)
+    full_velocity,     // added body: zigzag(vx), zigzag(vy)
+    full_angular_velocity,
+    class_count
 };
 
 // Field mask of a touched baseline body, 4 bits; 0 escapes to "removed" or "owner changed".
@@ -48,8 +48,8 @@ inline constexpr std::uint32_t max_predicted_ticks = 4095;
 // non-integer n/b is at least 1/b from an integer, which that error cannot reach while
 // |n| < 2^52; so floor() of the computed quotient is floor(n / b) on every compiler.
 [[nodiscard]] inline std::int64_t round_div(std::int64_t a, std::int64_t b) noexcept {
-  const std::int64_t n = a + b / 2;
-  return static_cast<std::int64_t>(std::floor(static_cast<double>(n) / static_cast<double>(b)));
+    const std::int64_t n = a + b / 2;
+    return static_cast<std::int64_t>(std::floor(static_cast<double>(n) / static_cast<double>(b)));
 }
 
 // Semi-implicit Euler (x += v_new·dt) under a constant acceleration over k ticks moves a body
@@ -57,35 +57,32 @@ inline constexpr std::uint32_t max_predicted_ticks = 4095;
 // which the decoder reads before the position. Exact for drifting and steadily thrusting
 // bodies; reduces to k·v0·dt when the velocity is unchanged. Returns twice the displacement
 // in velocity units × ticks; the callers divide by 2·tick_rate.
-[[nodiscard]] constexpr std::int64_t trapezoid(std::int64_t v0, std::int64_t vk,
-                                               elapsed_time e) noexcept {
-  const std::int64_t k = std::min(e.ticks, max_predicted_ticks);
-  if (k == 0 || e.tick_rate == 0) return 0;
-  return v0 * (k - 1) + vk * (k + 1);
+[[nodiscard]] constexpr std::int64_t trapezoid(std::int64_t v0, std::int64_t vk, elapsed_time e) noexcept {
+    const std::int64_t k = std::min(e.ticks, max_predicted_ticks);
+    if (k == 0 || e.tick_rate == 0) return 0;
+    return v0 * (k - 1) + vk * (k + 1);
 }
 
 // Position units (1/256 m) from velocity units (1/32 m/s): × 8, ÷ 2·rate. |twice| < 2^44
 // (int32 velocities, k < 2^12), so the numerator stays under 2^47 < 2^51 (round_div's bound).
 inline constexpr std::int64_t position_units_per_velocity_unit = 8;
 static_assert(position_scale / velocity_scale == position_units_per_velocity_unit);
-[[nodiscard]] inline std::int64_t predict_displacement(std::int64_t v0, std::int64_t vk,
-                                                          elapsed_time e) noexcept {
-  const std::int64_t twice = trapezoid(v0, vk, e);
-  return twice == 0 ? 0 : round_div(twice * position_units_per_velocity_unit, 2 * std::int64_t{e.tick_rate});
+[[nodiscard]] inline std::int64_t predict_displacement(std::int64_t v0, std::int64_t vk, elapsed_time e) noexcept {
+    const std::int64_t twice = trapezoid(v0, vk, e);
+    return twice == 0 ? 0 : round_div(twice * position_units_per_velocity_unit, 2 * std::int64_t{e.tick_rate});
 }
 
 // Angle units (2π/65536 rad) from angular velocity units (1/256 rad/s): × 256/(2π), as the
 // fixed-point constant round(256/(2π) · 2^16) (|twice| < 2^29, so the product is < 2^51).
 inline constexpr std::int64_t omega_to_angle_q16 = 2670177;
-[[nodiscard]] inline std::int64_t predict_rotation(std::int64_t w0, std::int64_t wk,
-                                                      elapsed_time e) noexcept {
-  const std::int64_t twice = trapezoid(w0, wk, e);
-  return twice == 0 ? 0 : round_div(twice * omega_to_angle_q16, 2 * std::int64_t{e.tick_rate} << 16);
+[[nodiscard]] inline std::int64_t predict_rotation(std::int64_t w0, std::int64_t wk, elapsed_time e) noexcept {
+    const std::int64_t twice = trapezoid(w0, wk, e);
+    return twice == 0 ? 0 : round_div(twice * omega_to_angle_q16, 2 * std::int64_t{e.tick_rate} << 16);
 }
 
 // Angles live on the circle: sums wrap modulo 65536 (C++20 defines the conversion).
 [[nodiscard]] constexpr std::int16_t wrap_angle(std::int64_t a) noexcept {
-  return static_cast<std::int16_t>(static_cast<std::uint16_t>(a & 0xffff));
+    return static_cast<std::int16_t>(static_cast<std::uint16_t>(a & 0xffff));
 }
 
 }  // namespace arena::protocol::delta::format

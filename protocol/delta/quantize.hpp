@@ -19,20 +19,20 @@ namespace arena::protocol::delta {
 
 // 28 bytes (BodyState: 32). Field order follows BodyState.
 struct quantized_body {
-  std::uint32_t id = 0;
-  std::uint32_t owner = 0;
-  std::int32_t x = 0;                 // 1/256 m
-  std::int32_t y = 0;                 // 1/256 m
-  std::int32_t vx = 0;                // 1/256 m/s
-  std::int32_t vy = 0;                // 1/256 m/s
-  std::int16_t angle = 0;             // 2π/65536 rad; −32768 is +π (BodyState's range is (−π, π])
-  std::int16_t angular_velocity = 0;  // 1/256 rad/s
+    std::uint32_t id = 0;
+    std::uint32_t owner = 0;
+    std::int32_t x = 0;                 // 1/256 m
+    std::int32_t y = 0;                 // 1/256 m
+    std::int32_t vx = 0;                // 1/256 m/s
+    std::int32_t vy = 0;                // 1/256 m/s
+    std::int16_t angle = 0;             // 2π/65536 rad; −32768 is +π (BodyState's range is (−π, π])
+    std::int16_t angular_velocity = 0;  // 1/256 rad/s
 
-  friend bool operator==(const quantized_body&, const quantized_body&) = default;
+    friend bool operator==(const quantized_body&, const quantized_body&) = default;
 };
 
 // Units per SI unit.
-inline constexpr double position_scale = 256.0;          // per m
+inline constexpr double position_scale = 256.0;  // per m
 // Velocities are coarser than positions: positions are sent with their own residual, so a
 // velocity error only shifts a prediction by error × elapsed time (1/64 m/s × 0.15 s ≈ 2 mm,
 // a position unit), while each finer bit would cost two bits per moving body per snapshot.
@@ -41,8 +41,8 @@ inline constexpr double velocity_scale = 32.0;           // per m/s
 inline constexpr double angular_velocity_scale = 256.0;  // per rad/s
 // 2π/65536 rad per unit; written out (not computed with libm) so every compiler agrees.
 inline constexpr double pi = 3.14159265358979323846;
-inline constexpr double angle_unit = pi / 32768.0;       // rad
-inline constexpr double angle_scale = 32768.0 / pi;      // units per rad
+inline constexpr double angle_unit = pi / 32768.0;   // rad
+inline constexpr double angle_scale = 32768.0 / pi;  // units per rad
 
 // Worst-case error of quantize then dequantize, before the float conversion of the result
 // (which is exact for |position| < 65 536 m and adds half a float ulp beyond).

@@ -16,30 +16,29 @@ namespace f = format;
 
 // A body present in the baseline and the current view, as the decoder will rebuild it.
 struct body_change {
-  unsigned mask = 0;
-  bool owner_changed = false;
-  std::int64_t dvx = 0, dvy = 0, dw = 0, rx = 0, ry = 0, ra = 0;
+    unsigned mask = 0;
+    bool owner_changed = false;
+    std::int64_t dvx = 0, dvy = 0, dw = 0, rx = 0, ry = 0, ra = 0;
 
-  [[nodiscard]] bool unchanged() const noexcept { return mask == 0 && !owner_changed; }
+    [[nodiscard]] bool unchanged() const noexcept { return mask == 0 && !owner_changed; }
 };
 
 inline body_change diff(const quantized_body& b, const quantized_body& c, elapsed_time e) noexcept {
-  body_change d;
-  d.owner_changed = b.owner != c.owner;
-  d.dvx = std::int64_t{c.vx} - b.vx;
-  d.dvy = std::int64_t{c.vy} - b.vy;
-  d.dw = std::int64_t{c.angular_velocity} - b.angular_velocity;
-  d.rx = c.x - (b.x + f::predict_displacement(b.vx, c.vx, e));
-  d.ry = c.y - (b.y + f::predict_displacement(b.vy, c.vy, e));
-  // The angle residual is the shorter way round the circle: small across the ±π seam too.
-  d.ra = f::wrap_angle(std::int64_t{c.angle} -
-                       f::wrap_angle(b.angle + f::predict_rotation(b.angular_velocity,
-                                                                   c.angular_velocity, e)));
-  if (d.dvx != 0 || d.dvy != 0) d.mask |= f::mask_velocity;
-  if (d.dw != 0) d.mask |= f::mask_angular_velocity;
-  if (d.rx != 0 || d.ry != 0) d.mask |= f::mask_position;
-  if (d.ra != 0) d.mask |= f::mask_angle;
-  return d;
+    body_change d;
+    d.owner_changed = b.owner != c.owner;
+    d.dvx = std::int64_t{c.vx} - b.vx;
+    d.dvy = std::int64_t{c.vy} - b.vy;
+    d.dw = std::int64_t{c.angular_velocity} - b.angular_velocity;
+    d.rx = c.x - (b.x + f::predict_displacement(b.vx, c.vx, e));
+    d.ry = c.y - (b.y + f::predict_displacement(b.vy, c.vy, e));
+    // The angle residual is the shorter way round the circle: small across the ±π seam too.
+    d.ra = f::wrap_angle(std::int64_t{c.angle} -
+                         f::wrap_angle(b.angle + f::predict_rotation(b.angular_velocity, c.angular_velocity, e)));
+    if (d.dvx != 0 || d.dvy != 0) d.mask |= f::mask_velocity;
+    if (d.dw != 0) d.mask |= f::mask_angular_velocity;
+    if (d.rx != 0 || d.ry != 0) d.mask |= f::mask_position;
+    if (d.ra != 0) d.mask |= f::mask_angle;
+    return d;
 }
 
 // How many values of each bit width (0..64) one class has.
@@ -48,109 +47,107 @@ using width_counts = std::array<std::uint64_t, 65>;
 // The order that makes the class shortest, estimating each value by the smallest of its
 // width (the decoder does not care how the order was chosen).
 [[nodiscard]] inline unsigned best_order(const width_counts& widths) noexcept {
-  // Only widths present matter, and no order beyond the widest value can be shorter.
-  unsigned widest = 0;
-  for (unsigned w = 0; w < 65; ++w) {
-    if (widths[w] != 0) widest = w;
-  }
-  unsigned best = 0;
-  std::uint64_t best_bits = UINT64_MAX;
-  for (unsigned k = 0; k <= widest && k <= max_golomb_order; ++k) {
-    std::uint64_t bits = 0;
-    for (unsigned w = 0; w <= widest; ++w) {
-      if (widths[w] == 0) continue;
-      const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
-      bits += widths[w] * golomb_bits(n, k);
+    // Only widths present matter, and no order beyond the widest value can be shorter.
+    unsigned widest = 0;
+    for (unsigned w = 0; w < 65; ++w) {
+        if (widths[w] != 0) widest = w;
     }
-    if (bits < best_bits) {
-      best_bits = bits;
-      best = k;
+    unsigned best = 0;
+    std::uint64_t best_bits = UINT64_MAX;
+    for (unsigned k = 0; k <= widest && k <= max_golomb_order; ++k) {
+        std::uint64_t bits = 0;
+        for (unsigned w = 0; w <= widest; ++w) {
+            if (widths[w] == 0) continue;
+            const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
+            bits += widths[w] * golomb_bits(n, k);
+        }
+        if (bits < best_bits) {
+            best_bits = bits;
+            best = k;
+        }
     }
-  }
-  return best;
+    return best;
 }
 
 // First pass: how many values of each bit width each class has.
 struct stats_sink {
-  std::array<width_counts, f::class_count> widths{};
-  void code(f::code_class c, std::uint64_t n) noexcept { ++widths[c][std::bit_width(n)]; }
-  void raw(std::uint64_t, unsigned) noexcept {}
-  [[nodiscard]] unsigned best_order(f::code_class c) const noexcept { return records::best_order(widths[c]); }
+    std::array<width_counts, f::class_count> widths{};
+    void code(f::code_class c, std::uint64_t n) noexcept { ++widths[c][std::bit_width(n)]; }
+    void raw(std::uint64_t, unsigned) noexcept {}
+    [[nodiscard]] unsigned best_order(f::code_class c) const noexcept { return records::best_order(widths[c]); }
 };
 
 // Second pass: the bits.
 struct write_sink {
-  bit_writer& w;
-  std::array<unsigned, f::class_count> order{};
-  void code(f::code_class c, std::uint64_t n) { w.put_golomb(n, order[c]); }
-  void raw(std::uint64_t v, unsigned n) { w.put(v, n); }
+    bit_writer& w;
+    std::array<unsigned, f::class_count> order{};
+    void code(f::code_class c, std::uint64_t n) { w.put_golomb(n, order[c]); }
+    void raw(std::uint64_t v, unsigned n) { w.put(v, n); }
 };
 
 template <class Sink>
 void emit_change(Sink& s, const body_change& d, std::uint32_t owner) {
-  if (d.owner_changed) {
-    s.raw(0, f::mask_bits);  // escape
-    s.raw(0, 1);             // not removed: the owner changed
-    s.code(f::owner, owner);
-  }
-  s.raw(d.mask, f::mask_bits);
-  if (d.mask & f::mask_velocity) {
-    s.code(f::velocity, zigzag(d.dvx));
-    s.code(f::velocity, zigzag(d.dvy));
-  }
-  if (d.mask & f::mask_angular_velocity) s.code(f::angular_velocity, zigzag(d.dw));
-  if (d.mask & f::mask_position) {
-    s.code(f::position, zigzag(d.rx));
-    s.code(f::position, zigzag(d.ry));
-  }
-  if (d.mask & f::mask_angle) s.code(f::angle, zigzag(d.ra));
+    if (d.owner_changed) {
+        s.raw(0, f::mask_bits);  // escape
+        s.raw(0, 1);             // not removed: the owner changed
+        s.code(f::owner, owner);
+    }
+    s.raw(d.mask, f::mask_bits);
+    if (d.mask & f::mask_velocity) {
+        s.code(f::velocity, zigzag(d.dvx));
+        s.code(f::velocity, zigzag(d.dvy));
+    }
+    if (d.mask & f::mask_angular_velocity) s.code(f::angular_velocity, zigzag(d.dw));
+    if (d.mask & f::mask_position) {
+        s.code(f::position, zigzag(d.rx));
+        s.code(f::position, zigzag(d.ry));
+    }
+    if (d.mask & f::mask_angle) s.code(f::angle, zigzag(d.ra));
 }
 
 // An added body's record after its id gap: owner, position, velocity, angle, spin, in full.
 template <class Sink>
 void emit_added_fields(Sink& s, const quantized_body& c) {
-  s.code(f::owner, c.owner);
-  s.code(f::full_position, zigzag(c.x));
-  s.code(f::full_position, zigzag(c.y));
-  s.code(f::full_velocity, zigzag(c.vx));
-  s.code(f::full_velocity, zigzag(c.vy));
-  s.raw(static_cast<std::uint16_t>(c.angle), 16);
-  s.code(f::full_angular_velocity, zigzag(c.angular_velocity));
+    s.code(f::owner, c.owner);
+    s.code(f::full_position, zigzag(c.x));
+    s.code(f::full_position, zigzag(c.y));
+    s.code(f::full_velocity, zigzag(c.vx));
+    s.code(f::full_velocity, zigzag(c.vy));
+    s.raw(static_cast<std::uint16_t>(c.angle), 16);
+    s.code(f::full_angular_velocity, zigzag(c.angular_velocity));
 }
 
 // A baseline body that left the view: the escape mask, then 1.
 template <class Sink>
 void emit_removed(Sink& s) {
-  s.raw(0, f::mask_bits);
-  s.raw(1, 1);
+    s.raw(0, f::mask_bits);
+    s.raw(1, 1);
 }
 
 // view_checksum() of `count` bodies, body(i) giving the i-th: the encoders checksum a view
 // held as a span or as indices into a state.
 template <class Body>
 std::uint32_t checksum_of(std::size_t count, Body body) noexcept {
-  // Four 64-bit words per body through a multiply-rotate mix: a few cycles per body, since
-  // the server computes it for every client's view of every snapshot. Not cryptographic.
-  constexpr std::uint64_t p1 = 0x9e3779b185ebca87ull;
-  constexpr std::uint64_t p2 = 0xc2b2ae3d27d4eb4full;
-  std::uint64_t h = 0x27d4eb2f165667c5ull ^ count;
-  auto mix = [&h](std::uint64_t word) {
-    h = std::rotl(h ^ (word * p1), 31) * p2;
-  };
-  for (std::size_t i = 0; i < count; ++i) {
-    const quantized_body& b = body(i);
-    mix(std::uint64_t{b.id} | std::uint64_t{b.owner} << 32);
-    mix(std::uint64_t{static_cast<std::uint32_t>(b.x)} |
-        std::uint64_t{static_cast<std::uint32_t>(b.y)} << 32);
-    mix(std::uint64_t{static_cast<std::uint32_t>(b.vx)} |
-        std::uint64_t{static_cast<std::uint32_t>(b.vy)} << 32);
-    mix(std::uint64_t{static_cast<std::uint16_t>(b.angle)} |
-        std::uint64_t{static_cast<std::uint16_t>(b.angular_velocity)} << 16);
-  }
-  h ^= h >> 29;
-  h *= p1;
-  h ^= h >> 32;
-  return static_cast<std::uint32_t>(h);
+    // Four 64-bit words per body through a multiply-rotate mix: a few cycles per body, since
+    // the server computes it for every client's view of every snapshot. Not cryptographic.
+    constexpr std::uint64_t p1 = 0x9e3779b185ebca87ull;
+    constexpr std::uint64_t p2 = 0xc2b2ae3d27d4eb4full;
+    std::uint64_t h = 0x27d4eb2f165667c5ull ^ count;
+    auto mix = [&h](std::uint64_t word) {
+        h = std::rotl(h ^ (word * p1), 31) * p2;
+    };
+    for (std::size_t i = 0; i < count; ++i) {
+        const quantized_body& b = body(i);
+        mix(std::uint64_t{b.id} | std::uint64_t{b.owner} << 32);
+        mix(std::uint64_t{static_cast<std::uint32_t>(b.x)} | std::uint64_t{static_cast<std::uint32_t>(b.y)} << 32);
+        mix(std::uint64_t{static_cast<std::uint32_t>(b.vx)} | std::uint64_t{static_cast<std::uint32_t>(b.vy)} << 32);
+        mix(std::uint64_t{static_cast<std::uint16_t>(b.angle)} |
+            std::uint64_t{static_cast<std::uint16_t>(b.angular_velocity)} << 16);
+    }
+    h ^= h >> 29;
+    h *= p1;
+    h ^= h >> 32;
+    return static_cast<std::uint32_t>(h);
 }
 
 }  // namespace arena::protocol::delta::records

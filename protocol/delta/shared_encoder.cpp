@@ -107,7 +107,8 @@ const shared_encoder::record& shared_encoder::change_record(std::uint32_t b) {
 
 const shared_encoder::record& shared_encoder::added_record(std::uint32_t i) {
     record& r = added_[i];
-    if (r.bits == none) add_record(pool_, order_, r.word, r.bits, [&](pool_sink& s) { emit_added_fields(s, state_[i]); });
+    if (r.bits == none)
+        add_record(pool_, order_, r.word, r.bits, [&](pool_sink& s) { emit_added_fields(s, state_[i]); });
     return r;
 }
 

@@ -16,7 +16,8 @@ constexpr std::string_view version_tag = "v1";
 std::string to_base64url(std::string_view bytes) {
     const int variant = sodium_base64_VARIANT_URLSAFE_NO_PADDING;
     std::string out(sodium_base64_ENCODED_LEN(bytes.size(), variant), '\0');
-    sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), variant);
+    sodium_bin2base64(out.data(), out.size(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                      variant);
     out.resize(std::char_traits<char>::length(out.c_str()));
     return out;
 }
@@ -86,12 +87,14 @@ std::variant<token_claims, token_error> token_secret::verify(std::string_view to
     } catch (const std::exception&) {
         return token_error{"malformed token"};
     }
-    if (claims.expires <= now) return token_error{"token expired at " + std::to_string(claims.expires) + " (now " + std::to_string(now) + ")"};
+    if (claims.expires <= now)
+        return token_error{"token expired at " + std::to_string(claims.expires) + " (now " + std::to_string(now) + ")"};
     return claims;
 }
 
 int64_t unix_now() {
-    return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+    return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
 }
 
 }  // namespace arena::auth

@@ -169,7 +169,8 @@ void check_ranges(const world::world_config& c) {
     require(c.player.radius > 0, "field 'player.radius' must be positive");
     require(c.rocks.min_radius > 0 && c.rocks.min_radius <= c.rocks.max_radius,
             "fields 'rocks.min_radius' and 'rocks.max_radius' must satisfy 0 < min <= max");
-    require(c.penetration_slop >= 0 && c.speculative_distance >= 0, "fields 'penetration_slop' and 'speculative_distance' must not be negative");
+    require(c.penetration_slop >= 0 && c.speculative_distance >= 0,
+            "fields 'penetration_slop' and 'speculative_distance' must not be negative");
     require(c.air_density >= 0, "field 'air_density' must not be negative");
     require(c.floor_friction >= 0, "field 'floor_friction' must not be negative");
     require(c.velocity_iterations <= 100 && c.position_iterations <= 100, "solver iterations must be at most 100");
@@ -216,10 +217,12 @@ const char* enum_name(Enum value, const std::pair<const char*, Enum> (&names)[N]
     return "?";
 }
 
-json vec_json(const vec2& v) { return json::array({v.x(), v.y()}); }
+json vec_json(const vec2& v) {
+    return json::array({v.x(), v.y()});
+}
 
 json material_json(const world::body_material& m) {
-    return {{"density", m.density}, {"mass", m.mass},           {"radius", m.radius},
+    return {{"density", m.density},         {"mass", m.mass},           {"radius", m.radius},
             {"restitution", m.restitution}, {"drag_area", m.drag_area}, {"fixed_rotation", m.fixed_rotation}};
 }
 
@@ -255,7 +258,8 @@ std::variant<world::world_config, config_error> load_config_file(const std::stri
 
 std::string config_to_json(const world::world_config& c) {
     json fluids = json::array();
-    for (const auto& f : c.fluids) fluids.push_back({{"min", vec_json(f.min)}, {"max", vec_json(f.max)}, {"density", f.density}});
+    for (const auto& f : c.fluids)
+        fluids.push_back({{"min", vec_json(f.min)}, {"max", vec_json(f.max)}, {"density", f.density}});
     const auto& k = c.control;
     json j = {
         {"dt", c.dt},

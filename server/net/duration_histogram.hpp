@@ -13,7 +13,8 @@ public:
     static constexpr size_t bucket_count = 10'000;
 
     void add(int64_t ns) {
-        const size_t bucket = std::min<size_t>(static_cast<size_t>(std::max<int64_t>(ns, 0) / bucket_ns), bucket_count - 1);
+        const size_t bucket =
+            std::min<size_t>(static_cast<size_t>(std::max<int64_t>(ns, 0) / bucket_ns), bucket_count - 1);
         ++buckets_[bucket];
         ++count_;
         max_ns_ = std::max(max_ns_, ns);

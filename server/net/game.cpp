@@ -31,9 +31,11 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
                                                            " is not supported; this server speaks " +
                                                            std::to_string(protocol::protocol_version)};
     if (hello.name.size() > config_.max_name_bytes)
-        return rejection{RejectCode::bad_request, "name longer than " + std::to_string(config_.max_name_bytes) + " bytes"};
+        return rejection{RejectCode::bad_request,
+                         "name longer than " + std::to_string(config_.max_name_bytes) + " bytes"};
     if (hello.token.size() > config_.max_token_bytes)
-        return rejection{RejectCode::bad_request, "token longer than " + std::to_string(config_.max_token_bytes) + " bytes"};
+        return rejection{RejectCode::bad_request,
+                         "token longer than " + std::to_string(config_.max_token_bytes) + " bytes"};
     if (!identity.empty()) {
         for (auto& [id, p] : players_) {
             if (p.identity != identity) continue;
@@ -58,8 +60,9 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
     if (players_.size() >= config_.max_players)
         return rejection{RejectCode::server_full, "server full (" + std::to_string(config_.max_players) + " players)"};
     const uint32_t id = next_player_id_++;
-    player p{&who, hello.name, identity, 0, 0, input_buffer(config_.input_buffer), 0, 0,
-             snapshot_client(baseline_ring(), hello.delta_snapshots)};
+    player p{&who, hello.name, identity,
+             0,    0,          input_buffer(config_.input_buffer),
+             0,    0,          snapshot_client(baseline_ring(), hello.delta_snapshots)};
     players_.emplace(id, std::move(p));
     pending_joins_.push_back(id);
     return id;
@@ -203,8 +206,8 @@ void game::send_snapshots() {
             p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
             continue;
         }
-        const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack)
-                                             : fanout_.full_frame(p.body_id, ack);
+        const auto frame =
+            p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack) : fanout_.full_frame(p.body_id, ack);
         counters_.snapshot_bytes = frame.size();
         p.who->send_snapshot_frame(frame);
     }

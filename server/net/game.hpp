@@ -21,18 +21,18 @@
 namespace arena::net {
 
 struct game_config {
-    uint16_t tick_rate = 60;          // ticks per second
-    uint16_t snapshot_rate = 20;      // snapshots per second (a divisor of tick_rate works best)
+    uint16_t tick_rate = 60;      // ticks per second
+    uint16_t snapshot_rate = 20;  // snapshots per second (a divisor of tick_rate works best)
     uint32_t max_players = 64;
-    uint32_t input_buffer = 8;        // inputs waiting per player; more drop the oldest
+    uint32_t input_buffer = 8;           // inputs waiting per player; more drop the oldest
     uint32_t max_inputs_per_second = 0;  // 0: 2 × tick_rate + 10
     uint32_t max_name_bytes = 64;
     uint32_t max_token_bytes = 1024;
-    std::string preset;               // name sent in Welcome ("" for a config file)
+    std::string preset;  // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
-    double reconnect_grace_s = 10;    // a dropped player's body waits this long for it
-    float view_radius = 0;            // m: snapshots hold the bodies this near a player's; 0 = all
-    uint32_t delta_history = 32;      // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
+    double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
+    float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
+    uint32_t delta_history = 32;    // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
 };
 
 struct rejection {
@@ -47,7 +47,7 @@ struct game_counters {
     uint64_t input_underruns = 0;
     uint64_t input_overflows = 0;
     uint64_t inputs_received = 0;
-    uint64_t stale_inputs = 0;  // sequence not above the last received: ignored
+    uint64_t stale_inputs = 0;    // sequence not above the last received: ignored
     uint64_t snapshot_bytes = 0;  // the last snapshot frame built, bytes
     uint64_t reconnects = 0;
     uint64_t takeovers = 0;
@@ -111,9 +111,9 @@ private:
     world::world world_;
     std::string world_config_json_;
     uint64_t world_config_hash_;
-    std::map<uint32_t, player> players_;   // by player id: a deterministic order
-    std::vector<uint32_t> pending_joins_;  // player ids whose body spawns next tick
-    std::vector<uint32_t> pending_leaves_; // body ids to remove next tick
+    std::map<uint32_t, player> players_;      // by player id: a deterministic order
+    std::vector<uint32_t> pending_joins_;     // player ids whose body spawns next tick
+    std::vector<uint32_t> pending_leaves_;    // body ids to remove next tick
     std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
     snapshot_fanout fanout_;

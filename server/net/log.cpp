@@ -7,9 +7,11 @@ namespace arena::net {
 namespace {
 const auto process_start = std::chrono::steady_clock::now();
 bool logging = true;
-}
+}  // namespace
 
-void set_logging(bool enabled) { logging = enabled; }
+void set_logging(bool enabled) {
+    logging = enabled;
+}
 
 void log_line(const char* format, ...) {
     if (!logging) return;

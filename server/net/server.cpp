@@ -22,13 +22,17 @@ int64_t steady_now_ns() {
         .count();
 }
 
-double ms(int64_t ns) { return static_cast<double>(ns) / 1e6; }
+double ms(int64_t ns) {
+    return static_cast<double>(ns) / 1e6;
+}
 
 // CPU time and peak memory of this process, for the benchmarks and capacity planning.
 nlohmann::json process_figures() {
     rusage usage{};
     ::getrusage(RUSAGE_SELF, &usage);
-    auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6; };
+    auto seconds = [](const timeval& t) {
+        return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6;
+    };
     return {{"cpu_user_s", seconds(usage.ru_utime)},
             {"cpu_system_s", seconds(usage.ru_stime)},
             {"peak_rss_kib", usage.ru_maxrss}};
@@ -47,7 +51,9 @@ server::server(asio::io_context& io, const server_options& options, const world:
     if (options_.max_connections == 0) options_.max_connections = 2 * options_.game.max_players + 16;
 }
 
-int64_t server::now_ns() const { return steady_now_ns(); }
+int64_t server::now_ns() const {
+    return steady_now_ns();
+}
 
 void server::start() {
     const tcp::endpoint endpoint(asio::ip::make_address(options_.bind), options_.port);
@@ -130,12 +136,13 @@ void server::check_stalled_sessions(int64_t now) {
 
 void server::log_stats(int64_t now) {
     const double seconds = static_cast<double>(now - window_start_ns_) / 1e9;
-    log_line("stats players=%zu ticks=%u tick_ms_p50=%.3f tick_ms_p99=%.3f tick_ms_max=%.3f overruns=%llu "
-             "bytes_in_per_s=%.0f bytes_out_per_s=%.0f connections=%zu",
-             game_.player_count(), game_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
-             ms(window_ticks_.quantile_ns(0.99)), ms(window_ticks_.max_ns()),
-             static_cast<unsigned long long>(clock_.overruns()), static_cast<double>(window_traffic_.bytes_in) / seconds,
-             static_cast<double>(window_traffic_.bytes_out) / seconds, sessions_.size());
+    log_line(
+        "stats players=%zu ticks=%u tick_ms_p50=%.3f tick_ms_p99=%.3f tick_ms_max=%.3f overruns=%llu "
+        "bytes_in_per_s=%.0f bytes_out_per_s=%.0f connections=%zu",
+        game_.player_count(), game_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
+        ms(window_ticks_.quantile_ns(0.99)), ms(window_ticks_.max_ns()),
+        static_cast<unsigned long long>(clock_.overruns()), static_cast<double>(window_traffic_.bytes_in) / seconds,
+        static_cast<double>(window_traffic_.bytes_out) / seconds, sessions_.size());
     window_ticks_.clear();
     window_traffic_ = {};
     window_start_ns_ = now;
@@ -182,7 +189,8 @@ std::variant<uint32_t, rejection> server::on_hello(session& s, const protocol::h
     protocol::hello_msg named = hello;
     if (options_.token_secret) {
         auto claims = options_.token_secret->verify(hello.token, auth::unix_now());
-        if (auto* e = std::get_if<auth::token_error>(&claims)) return rejection{protocol::RejectCode::unauthorized, e->reason};
+        if (auto* e = std::get_if<auth::token_error>(&claims))
+            return rejection{protocol::RejectCode::unauthorized, e->reason};
         // The signed name is the player's identity, whatever name the Hello claims.
         named.name = std::get<auth::token_claims>(claims).name;
         identity = "signed:" + named.name;
@@ -263,10 +271,11 @@ void server::write_stats_json(const std::string& path) const {
         {"ticks", game_.state().tick()},
         {"tick_rate", options_.game.tick_rate},
         {"snapshot_rate", options_.game.snapshot_rate},
-        {"tick_ms", {{"p50", ms(run_ticks_.quantile_ns(0.5))},
-                     {"p99", ms(run_ticks_.quantile_ns(0.99))},
-                     {"max", ms(run_ticks_.max_ns())},
-                     {"mean", run_ticks_.mean_ns() / 1e6}}},
+        {"tick_ms",
+         {{"p50", ms(run_ticks_.quantile_ns(0.5))},
+          {"p99", ms(run_ticks_.quantile_ns(0.99))},
+          {"max", ms(run_ticks_.max_ns())},
+          {"mean", run_ticks_.mean_ns() / 1e6}}},
         {"overruns", clock_.overruns()},
         {"players_peak", c.players_peak},
         {"joins", c.joins},
@@ -289,8 +298,8 @@ void server::write_stats_json(const std::string& path) const {
           {"delta_payload_bytes", c.snapshots.delta_payload_bytes},
           {"delta_bodies", c.snapshots.delta_bodies},
           {"delta_bytes_per_body", c.snapshots.delta_bodies == 0 ? 0.0
-                                   : static_cast<double>(c.snapshots.delta_bytes) /
-                                         static_cast<double>(c.snapshots.delta_bodies)}}},
+                                                                 : static_cast<double>(c.snapshots.delta_bytes) /
+                                                                       static_cast<double>(c.snapshots.delta_bodies)}}},
         {"bytes_in", run_traffic_.bytes_in},
         {"bytes_out", run_traffic_.bytes_out},
         {"messages_out", run_traffic_.messages_out},
@@ -299,7 +308,7 @@ void server::write_stats_json(const std::string& path) const {
           {"max_connections", options_.max_connections},
           {"max_pending_handshakes", options_.max_pending_handshakes},
           {"max_inputs_per_second", options_.game.max_inputs_per_second ? options_.game.max_inputs_per_second
-                                                                         : 2u * options_.game.tick_rate + 10u},
+                                                                        : 2u * options_.game.tick_rate + 10u},
           {"input_buffer", options_.game.input_buffer},
           {"max_frame_bytes", protocol::max_client_frame_body},
           {"max_control_frames", options_.max_control_frames},

@@ -22,21 +22,21 @@ class session;
 
 struct server_options {
     std::string bind = "127.0.0.1";
-    uint16_t port = 7777;                 // 0: any free port
+    uint16_t port = 7777;  // 0: any free port
     game_config game{};
-    double duration_s = 0;                // 0: run until a signal
-    std::string stats_json;               // written at exit when set
-    uint32_t max_connections = 0;         // 0: 2 × max_players + 16
-    uint32_t max_pending_handshakes = 64; // connections that have not sent Hello yet
+    double duration_s = 0;                         // 0: run until a signal
+    std::string stats_json;                        // written at exit when set
+    uint32_t max_connections = 0;                  // 0: 2 × max_players + 16
+    uint32_t max_pending_handshakes = 64;          // connections that have not sent Hello yet
     int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
     int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
-    uint32_t max_control_frames = 64;     // queued control messages per client
+    uint32_t max_control_frames = 64;              // queued control messages per client
     // Kernel send buffer per client, bytes: bounds the memory a client that does not read can
     // hold in the kernel (Linux would otherwise grow it to 4 MiB each) and lets a stall show.
     int socket_send_buffer = 256 * 1024;
-    int64_t close_grace_ns = 1'000'000'000;        // a closing client may flush this long
-    uint32_t max_catch_up = 5;            // ticks run at once after a stall; more are overruns
-    double stats_interval_s = 5;          // period of the stats log line
+    int64_t close_grace_ns = 1'000'000'000;          // a closing client may flush this long
+    uint32_t max_catch_up = 5;                       // ticks run at once after a stall; more are overruns
+    double stats_interval_s = 5;                     // period of the stats log line
     std::optional<auth::token_secret> token_secret;  // set: only signed, unexpired tokens join
 };
 

@@ -3,8 +3,8 @@
 // writer coroutine, the only one that writes to the socket. Output is bounded: control
 // messages queue up to a limit, and a snapshot waiting to be sent is replaced by a newer one,
 // so a client that does not read costs at most one snapshot and a few small frames.
-#include <asio.hpp>
 #include <array>
+#include <asio.hpp>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -51,7 +51,7 @@ private:
     std::string peer_;
     uint32_t player_id_ = 0;  // 0 until the Hello is accepted
     protocol::frame_reader reader_;
-    std::array<uint8_t, 1024> input_{};  // bytes read from the socket, fed to reader_
+    std::array<uint8_t, 1024> input_{};          // bytes read from the socket, fed to reader_
     std::deque<protocol::frame_bytes> control_;  // in order, bounded
     std::vector<uint8_t> snapshot_next_;         // newest snapshot not yet being written
     std::vector<uint8_t> snapshot_writing_;

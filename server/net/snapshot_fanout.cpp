@@ -93,8 +93,8 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, u
         held = client.views.at(acked);
         if (held != nullptr) baseline_tick = acked;
     }
-    encoder_for(baseline_tick).encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(),
-                                      delta_bytes_);
+    encoder_for(baseline_tick)
+        .encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(), delta_bytes_);
     client.views.record(tick_, view_);
 
     const auto frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_);

@@ -32,18 +32,18 @@ struct fanout_config {
 // What the fan-out keeps per client.
 struct snapshot_client {
     explicit snapshot_client(tick_ring ring, bool delta) : delta(delta), views(ring) {}
-    bool delta = false;        // the client decodes delta snapshots
-    uint32_t acked_tick = 0;   // its newest Input.snapshot_ack; 0: none
-    client_views views;        // what its recent snapshots held
+    bool delta = false;       // the client decodes delta snapshots
+    uint32_t acked_tick = 0;  // its newest Input.snapshot_ack; 0: none
+    client_views views;       // what its recent snapshots held
 };
 
 struct fanout_counters {
-    uint64_t delta_frames = 0;     // delta-encoded frames sent against a baseline
-    uint64_t keyframes = 0;        // delta-encoded frames sent without one (new or lost client)
-    uint64_t delta_bytes = 0;      // bytes of both kinds of frames
+    uint64_t delta_frames = 0;         // delta-encoded frames sent against a baseline
+    uint64_t keyframes = 0;            // delta-encoded frames sent without one (new or lost client)
+    uint64_t delta_bytes = 0;          // bytes of both kinds of frames
     uint64_t delta_payload_bytes = 0;  // the codec's bytes inside them (no FlatBuffers framing)
-    uint64_t delta_bodies = 0;     // bodies in the views those frames carried
-    uint64_t full_frames = 0;      // BodyState frames sent (clients without delta_snapshots)
+    uint64_t delta_bodies = 0;         // bodies in the views those frames carried
+    uint64_t full_frames = 0;          // BodyState frames sent (clients without delta_snapshots)
 };
 
 class snapshot_fanout {
@@ -87,7 +87,7 @@ private:
     std::vector<protocol::BodyState> states_;  // this tick's bodies as BodyState
     std::vector<uint32_t> view_;
     struct prepared_encoder {
-        uint32_t tick = 0;           // the tick it was prepared in; stale when not this one
+        uint32_t tick = 0;  // the tick it was prepared in; stale when not this one
         uint32_t baseline_tick = 0;
         protocol::delta::shared_encoder encoder;
     };

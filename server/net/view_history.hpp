@@ -17,8 +17,8 @@ namespace arena::net {
 // The ring slot of a tick: snapshot ticks are multiples of one interval, so consecutive
 // snapshots take consecutive slots.
 struct tick_ring {
-    uint32_t depth = 32;      // snapshots kept
-    uint32_t interval = 1;    // ticks between snapshots
+    uint32_t depth = 32;    // snapshots kept
+    uint32_t interval = 1;  // ticks between snapshots
     [[nodiscard]] size_t slot(uint32_t tick) const { return (tick / interval) % depth; }
 };
 

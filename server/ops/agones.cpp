@@ -49,11 +49,11 @@ void agones_client::finish_shutdown(const char* how) {
 }
 
 asio::awaitable<bool> agones_client::post(const char* path) {
-    const http_result r = co_await http_post(io_.get_executor(), options_.host, options_.port, path, "{}",
-                                             options_.request_timeout_ns);
+    const http_result r =
+        co_await http_post(io_.get_executor(), options_.host, options_.port, path, "{}", options_.request_timeout_ns);
     if (!r.ok() && log_ && !finished_)
-        log_(std::string("agones: POST ") + path + " failed: " +
-             (r.status ? "HTTP " + std::to_string(r.status) : r.error));
+        log_(std::string("agones: POST ") + path +
+             " failed: " + (r.status ? "HTTP " + std::to_string(r.status) : r.error));
     co_return r.ok();
 }
 

@@ -12,13 +12,13 @@
 namespace arena::ops {
 
 struct agones_options {
-    std::string host = "127.0.0.1";                // the sidecar shares the pod's loopback
-    uint16_t port = 9358;                          // AGONES_SDK_HTTP_PORT
-    int64_t health_interval_ns = 2'000'000'000;    // between /health pings
-    int64_t request_timeout_ns = 1'000'000'000;    // one request, connect to response head
-    int64_t retry_initial_ns = 100'000'000;        // first retry of /ready or /shutdown
-    int64_t retry_max_ns = 2'000'000'000;          // retries double up to this
-    int64_t shutdown_timeout_ns = 5'000'000'000;   // /shutdown gives up after this
+    std::string host = "127.0.0.1";               // the sidecar shares the pod's loopback
+    uint16_t port = 9358;                         // AGONES_SDK_HTTP_PORT
+    int64_t health_interval_ns = 2'000'000'000;   // between /health pings
+    int64_t request_timeout_ns = 1'000'000'000;   // one request, connect to response head
+    int64_t retry_initial_ns = 100'000'000;       // first retry of /ready or /shutdown
+    int64_t retry_max_ns = 2'000'000'000;         // retries double up to this
+    int64_t shutdown_timeout_ns = 5'000'000'000;  // /shutdown gives up after this
 };
 
 using log_fn = std::function<void(const std::string&)>;
@@ -47,8 +47,8 @@ private:
     agones_options options_;
     std::function<bool()> healthy_;
     log_fn log_;
-    asio::steady_timer wake_;       // the sleep between attempts; shutdown() cuts it short
-    asio::steady_timer deadline_;   // bounds the shutdown phase
+    asio::steady_timer wake_;      // the sleep between attempts; shutdown() cuts it short
+    asio::steady_timer deadline_;  // bounds the shutdown phase
     bool started_ = false;
     bool stopping_ = false;
     bool finished_ = false;

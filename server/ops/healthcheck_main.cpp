@@ -32,7 +32,8 @@ bool parse_url(const std::string& url, target& out) {
     if (host_end == std::string::npos) return false;
     const size_t slash = url.find('/', host_end);
     out.host = url.substr(scheme.size(), host_end - scheme.size());
-    const std::string port = url.substr(host_end + 1, slash == std::string::npos ? std::string::npos : slash - host_end - 1);
+    const std::string port =
+        url.substr(host_end + 1, slash == std::string::npos ? std::string::npos : slash - host_end - 1);
     out.path = slash == std::string::npos ? "/" : url.substr(slash);
     char* end = nullptr;
     const long p = std::strtol(port.c_str(), &end, 10);
@@ -43,14 +44,16 @@ bool parse_url(const std::string& url, target& out) {
 
 // Waits for `events` on fd until the deadline; false on timeout or error.
 bool wait_for(int fd, short events, std::chrono::steady_clock::time_point deadline) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return false;
     pollfd p{fd, events, 0};
     return poll(&p, 1, static_cast<int>(left.count())) == 1 && (p.revents & (events | POLLHUP));
 }
 
 int probe(const target& t, double timeout_s) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000));
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000));
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_port = htons(t.port);
@@ -90,12 +93,15 @@ int main(int argc, char** argv) {
     double timeout_s = 2;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--timeout" && i + 1 < argc) timeout_s = std::atof(argv[++i]);
+        if (arg == "--timeout" && i + 1 < argc)
+            timeout_s = std::atof(argv[++i]);
         else if (arg == "--help" || arg == "-h") {
-            std::printf("usage: arena-healthcheck [http://IPV4:PORT/PATH] [--timeout SECONDS]\n"
-                        "exit 0 when the URL answers HTTP 200 within the timeout (default 2 s), 1 otherwise\n");
+            std::printf(
+                "usage: arena-healthcheck [http://IPV4:PORT/PATH] [--timeout SECONDS]\n"
+                "exit 0 when the URL answers HTTP 200 within the timeout (default 2 s), 1 otherwise\n");
             return 0;
-        } else url = arg;
+        } else
+            url = arg;
     }
     target t;
     if (!parse_url(url, t) || !(timeout_s > 0)) {

@@ -8,20 +8,32 @@ namespace {
 
 const char* status_text(int status) {
     switch (status) {
-    case 200: return "OK";
-    case 400: return "Bad Request";
-    case 404: return "Not Found";
-    case 405: return "Method Not Allowed";
-    case 408: return "Request Timeout";
-    case 431: return "Request Header Fields Too Large";
-    case 500: return "Internal Server Error";
-    case 503: return "Service Unavailable";
-    case 505: return "HTTP Version Not Supported";
-    default: return "Unknown";
+        case 200:
+            return "OK";
+        case 400:
+            return "Bad Request";
+        case 404:
+            return "Not Found";
+        case 405:
+            return "Method Not Allowed";
+        case 408:
+            return "Request Timeout";
+        case 431:
+            return "Request Header Fields Too Large";
+        case 500:
+            return "Internal Server Error";
+        case 503:
+            return "Service Unavailable";
+        case 505:
+            return "HTTP Version Not Supported";
+        default:
+            return "Unknown";
     }
 }
 
-bool is_token_char(char c) { return c > 32 && c < 127; }
+bool is_token_char(char c) {
+    return c > 32 && c < 127;
+}
 
 }  // namespace
 
@@ -92,7 +104,12 @@ int parse_response_status(std::string_view response) {
 
 std::string format_post(std::string_view host, uint16_t port, std::string_view path, std::string_view json_body) {
     std::string out;
-    out.append("POST ").append(path).append(" HTTP/1.1\r\nHost: ").append(host).append(":").append(std::to_string(port));
+    out.append("POST ")
+        .append(path)
+        .append(" HTTP/1.1\r\nHost: ")
+        .append(host)
+        .append(":")
+        .append(std::to_string(port));
     out.append("\r\nContent-Type: application/json\r\nContent-Length: ").append(std::to_string(json_body.size()));
     out.append("\r\nConnection: close\r\n\r\n").append(json_body);
     return out;

@@ -58,7 +58,7 @@ asio::awaitable<void> http_server::accept_loop() {
         asio::error_code ec;
         tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(asio::use_awaitable, ec));
         if (!state->alive || ec == asio::error::operation_aborted || !acceptor_.is_open()) co_return;
-        if (ec) continue;  // e.g. EMFILE: the next accept may succeed
+        if (ec) continue;                                       // e.g. EMFILE: the next accept may succeed
         if (state->open >= options_.max_connections) continue;  // the socket closes as it goes
         asio::co_spawn(io_, serve(std::move(socket)), asio::detached);
     }

@@ -14,10 +14,10 @@ namespace arena::ops {
 
 struct http_server_options {
     std::string bind = "127.0.0.1";
-    uint16_t port = 0;                          // 0: any free port (see port())
-    size_t max_request_bytes = 8 * 1024;        // request line + headers; more gets 431
-    int64_t read_timeout_ns = 5'000'000'000;    // the whole head must arrive within this
-    uint32_t max_connections = 32;              // more are closed at once
+    uint16_t port = 0;                        // 0: any free port (see port())
+    size_t max_request_bytes = 8 * 1024;      // request line + headers; more gets 431
+    int64_t read_timeout_ns = 5'000'000'000;  // the whole head must arrive within this
+    uint32_t max_connections = 32;            // more are closed at once
 };
 
 class http_server {

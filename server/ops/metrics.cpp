@@ -30,7 +30,8 @@ void render_tick(text_writer& w, const server_metrics& m) {
 void render_players(text_writer& w, const server_metrics& m) {
     gauge(w, "arena_players_connected", "Players in the match.", static_cast<double>(m.players_connected));
     gauge(w, "arena_players_max", "Players the match admits at once.", static_cast<double>(m.players_max));
-    gauge(w, "arena_connections_open", "Open client connections, joined or not.", static_cast<double>(m.connections_open));
+    gauge(w, "arena_connections_open", "Open client connections, joined or not.",
+          static_cast<double>(m.connections_open));
     counter(w, "arena_player_joins_total", "Players who joined the match.", m.joins);
     counter(w, "arena_player_leaves_total", "Players who left the match, for any reason.", m.leaves);
     w.family("arena_rejects_total", "counter", "Connections refused or dropped with a Reject, by reason code.");
@@ -43,10 +44,12 @@ void render_traffic(text_writer& w, const server_metrics& m) {
     counter(w, "arena_received_messages_total", "Protocol messages read from clients.", m.messages_in);
     counter(w, "arena_sent_messages_total", "Protocol messages written to clients.", m.messages_out);
     counter(w, "arena_snapshots_sent_total", "Snapshots sent, one per client per broadcast.", m.snapshots_sent);
-    gauge(w, "arena_snapshot_size_bytes", "Size of the last snapshot frame built.", static_cast<double>(m.snapshot_size_bytes));
+    gauge(w, "arena_snapshot_size_bytes", "Size of the last snapshot frame built.",
+          static_cast<double>(m.snapshot_size_bytes));
     counter(w, "arena_inputs_received_total", "Input messages received from players.", m.inputs_received);
     counter(w, "arena_input_underruns_total", "Ticks that found a player's input buffer empty.", m.input_underruns);
-    counter(w, "arena_input_overflows_total", "Inputs that arrived to a full buffer and dropped the oldest.", m.input_overflows);
+    counter(w, "arena_input_overflows_total", "Inputs that arrived to a full buffer and dropped the oldest.",
+            m.input_overflows);
 }
 
 void render_lifecycle(text_writer& w, const server_metrics& m) {
@@ -61,14 +64,17 @@ void render_process(text_writer& w, const process_stats& p) {
     w.sample("process_cpu_seconds_total", p.cpu_seconds);
     gauge(w, "process_resident_memory_bytes", "Resident memory size in bytes.", p.resident_memory_bytes);
     gauge(w, "process_virtual_memory_bytes", "Virtual memory size in bytes.", p.virtual_memory_bytes);
-    gauge(w, "process_start_time_seconds", "Start time of the process since unix epoch in seconds.", p.start_time_seconds);
+    gauge(w, "process_start_time_seconds", "Start time of the process since unix epoch in seconds.",
+          p.start_time_seconds);
     gauge(w, "process_open_fds", "Number of open file descriptors.", p.open_fds);
     gauge(w, "process_max_fds", "Maximum number of open file descriptors.", p.max_fds);
 }
 
 }  // namespace
 
-const char* build_version() { return ARENA_VERSION; }
+const char* build_version() {
+    return ARENA_VERSION;
+}
 
 std::string render_metrics(const server_metrics& m) {
     text_writer w;

@@ -17,13 +17,13 @@ namespace arena::ops {
 struct server_metrics {
     // Tick loop.
     histogram tick_duration_s{tick_duration_buckets_s()};  // seconds per world step
-    uint64_t ticks = 0;                 // world steps so far
-    uint64_t tick_overruns = 0;         // ticks dropped because the loop fell behind
-    double tick_budget_s = 0;           // 1 / tick rate, seconds
+    uint64_t ticks = 0;                                    // world steps so far
+    uint64_t tick_overruns = 0;                            // ticks dropped because the loop fell behind
+    double tick_budget_s = 0;                              // 1 / tick rate, seconds
     // Players and connections.
     uint64_t players_connected = 0;
-    uint64_t players_max = 0;           // --max-players
-    uint64_t connections_open = 0;      // sockets, including those not (yet) joined
+    uint64_t players_max = 0;       // --max-players
+    uint64_t connections_open = 0;  // sockets, including those not (yet) joined
     uint64_t joins = 0;
     uint64_t leaves = 0;
     std::map<std::string, uint64_t> rejects;  // by reason code name (protocol RejectCode)
@@ -33,16 +33,16 @@ struct server_metrics {
     uint64_t messages_in = 0;
     uint64_t messages_out = 0;
     // Snapshots.
-    uint64_t snapshots_sent = 0;        // one per client per broadcast
-    uint64_t snapshot_size_bytes = 0;   // the last snapshot frame built, bytes
+    uint64_t snapshots_sent = 0;       // one per client per broadcast
+    uint64_t snapshot_size_bytes = 0;  // the last snapshot frame built, bytes
     // Input buffers, all players (departed ones included).
     uint64_t inputs_received = 0;
-    uint64_t input_underruns = 0;       // a tick found no input and repeated the last one
-    uint64_t input_overflows = 0;       // an input arrived to a full buffer; the oldest went
+    uint64_t input_underruns = 0;  // a tick found no input and repeated the last one
+    uint64_t input_overflows = 0;  // an input arrived to a full buffer; the oldest went
     // Lifecycle.
-    bool draining = false;              // shutting down: no new players
-    std::string version;                // build version; "" renders the compiled-in one
-    process_stats process;              // filled by render's caller (read_process_stats)
+    bool draining = false;  // shutting down: no new players
+    std::string version;    // build version; "" renders the compiled-in one
+    process_stats process;  // filled by render's caller (read_process_stats)
 };
 
 // The version this binary was built as (CMake's PROJECT_VERSION).

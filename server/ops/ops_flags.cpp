@@ -8,10 +8,12 @@ namespace arena::ops {
 void add_ops_flags(CLI::App& app, ops_options& options) {
     app.add_option_function<uint16_t>(
            "--metrics-port", [&options](uint16_t port) { options.metrics_port = port; },
-           "serve /metrics and /healthz over HTTP on this port, at the --bind address (default: off; 0 picks a free one)")
+           "serve /metrics and /healthz over HTTP on this port, at the --bind address (default: off; 0 picks a free "
+           "one)")
         ->type_name("PORT");
-    app.add_flag("--agones", options.agones,
-                 "talk to the Agones SDK sidecar: ready, health pings, shutdown (default: on when AGONES_SDK_HTTP_PORT is set)");
+    app.add_flag(
+        "--agones", options.agones,
+        "talk to the Agones SDK sidecar: ready, health pings, shutdown (default: on when AGONES_SDK_HTTP_PORT is set)");
     app.add_option_function<uint16_t>(
            "--agones-port",
            [&options](uint16_t port) {

@@ -28,7 +28,8 @@ void ops_service::start_after_listening() {
     }
     if (options_.agones && !agones_) {
         agones_ = std::make_unique<agones_client>(io_, options_.agones_sdk, healthy_, log_);
-        if (log_) log_("agones: sidecar at " + options_.agones_sdk.host + ":" + std::to_string(options_.agones_sdk.port));
+        if (log_)
+            log_("agones: sidecar at " + options_.agones_sdk.host + ":" + std::to_string(options_.agones_sdk.port));
         agones_->start();
     }
 }

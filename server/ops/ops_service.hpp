@@ -16,11 +16,11 @@
 namespace arena::ops {
 
 struct ops_options {
-    std::string bind = "127.0.0.1";    // the game's --bind: one address for everything
+    std::string bind = "127.0.0.1";        // the game's --bind: one address for everything
     std::optional<uint16_t> metrics_port;  // unset: no HTTP endpoint; 0: any free port
-    bool agones = false;               // talk to the Agones SDK sidecar
+    bool agones = false;                   // talk to the Agones SDK sidecar
     agones_options agones_sdk{};
-    bool agones_port_given = false;    // --agones-port: AGONES_SDK_HTTP_PORT does not override it
+    bool agones_port_given = false;  // --agones-port: AGONES_SDK_HTTP_PORT does not override it
 };
 
 class ops_service {

@@ -73,7 +73,8 @@ process_stats read_process_stats() {
     const long page = sysconf(_SC_PAGESIZE);
     const long ticks_per_second = sysconf(_SC_CLK_TCK);
     proc_stat_fields fields;
-    if (page <= 0 || ticks_per_second <= 0 || !parse_proc_self_stat(read_small_file("/proc/self/stat"), fields)) return s;
+    if (page <= 0 || ticks_per_second <= 0 || !parse_proc_self_stat(read_small_file("/proc/self/stat"), fields))
+        return s;
 
     std::istringstream statm(read_small_file("/proc/self/statm"));
     uint64_t size_pages = 0, resident_pages = 0;
@@ -82,8 +83,8 @@ process_stats read_process_stats() {
     s.virtual_memory_bytes = static_cast<double>(size_pages) * static_cast<double>(page);
     s.resident_memory_bytes = static_cast<double>(resident_pages) * static_cast<double>(page);
     s.cpu_seconds = static_cast<double>(fields.utime_ticks + fields.stime_ticks) / tps;
-    s.start_time_seconds =
-        static_cast<double>(parse_boot_time(read_small_file("/proc/stat"))) + static_cast<double>(fields.start_ticks) / tps;
+    s.start_time_seconds = static_cast<double>(parse_boot_time(read_small_file("/proc/stat"))) +
+                           static_cast<double>(fields.start_ticks) / tps;
     s.open_fds = count_open_fds();
     rlimit limit{};
     if (getrlimit(RLIMIT_NOFILE, &limit) == 0) s.max_fds = static_cast<double>(limit.rlim_cur);

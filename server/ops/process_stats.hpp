@@ -13,7 +13,7 @@ struct process_stats {
     double cpu_seconds = 0;            // user + system, seconds
     double start_time_seconds = 0;     // since the Unix epoch, seconds
     double open_fds = 0;
-    double max_fds = 0;                // soft RLIMIT_NOFILE
+    double max_fds = 0;  // soft RLIMIT_NOFILE
 };
 
 process_stats read_process_stats();

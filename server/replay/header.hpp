@@ -24,10 +24,10 @@ struct header {
     std::string world_config;  // JSON, arena::config::config_to_json
     std::string preset;        // for people reading the file; the JSON is what counts
     uint64_t seed = 0;
-    uint32_t tick_rate = 60;   // ticks per second, > 0
+    uint32_t tick_rate = 60;                         // ticks per second, > 0
     uint32_t hash_interval = default_hash_interval;  // ticks, > 0
-    uint32_t start_tick = 0;   // the world's tick when recording started
-    uint64_t start_hash = 0;   // the world's hash at start_tick
+    uint32_t start_tick = 0;                         // the world's tick when recording started
+    uint64_t start_hash = 0;                         // the world's hash at start_tick
 };
 
 // The header of a recording of `w` starting now: its config, tick and hash, and the seed and

@@ -93,8 +93,8 @@ protocol::result<record> reader::read_record() {
     const uint64_t start = offset_;
     const uint64_t left = size_ - start;
     if (left < record_prefix_size) {
-        return r::failure(at(start, "truncated: " + std::to_string(left) +
-                                        " bytes where a 4-byte record length was expected"));
+        return r::failure(
+            at(start, "truncated: " + std::to_string(left) + " bytes where a 4-byte record length was expected"));
     }
     // The whole prefix + root offset + identifier first: a file that is not a replay is named
     // as such, not as a bad length.
@@ -116,9 +116,9 @@ protocol::result<record> reader::read_record() {
     }
     const uint32_t length = read_le32(head);
     if (length < min_record_body || length > max_record_body) {
-        return r::failure(at(start, "bad record length " + std::to_string(length) + " (valid: " +
-                                        std::to_string(min_record_body) + " to " + std::to_string(max_record_body) +
-                                        " bytes)"));
+        return r::failure(at(start, "bad record length " + std::to_string(length) +
+                                        " (valid: " + std::to_string(min_record_body) + " to " +
+                                        std::to_string(max_record_body) + " bytes)"));
     }
     const uint64_t needed = uint64_t{record_prefix_size} + length + record_checksum_size;
     if (needed > left) {
@@ -150,9 +150,10 @@ protocol::result<entry> reader::next() {
     if (!file_) return r::failure(path_ + ": replay reader is not open");
     if (ended_) return r::failure(at(offset_, "read past the End record"));
     if (offset_ == size_) {
-        return r::failure(at(offset_, "the file ends without an End record: the recording was cut short "
-                                      "(the server stopped without finishing it) after tick " +
-                                          std::to_string(next_tick_)));
+        return r::failure(at(offset_,
+                             "the file ends without an End record: the recording was cut short "
+                             "(the server stopped without finishing it) after tick " +
+                                 std::to_string(next_tick_)));
     }
     const uint64_t start = offset_;
     auto rec = read_record();
@@ -162,7 +163,8 @@ protocol::result<entry> reader::next() {
 
 protocol::result<entry> reader::check_order(record rec, uint64_t start) {
     using r = protocol::result<entry>;
-    if (std::holds_alternative<header>(rec)) return r::failure(at(start, "unexpected record type Header after the header"));
+    if (std::holds_alternative<header>(rec))
+        return r::failure(at(start, "unexpected record type Header after the header"));
     if (auto* t = std::get_if<tick_record>(&rec)) {
         if (t->tick != next_tick_) {
             return r::failure(at(start, "Tick record for tick " + std::to_string(t->tick) + " where tick " +
@@ -173,8 +175,8 @@ protocol::result<entry> reader::check_order(record rec, uint64_t start) {
     }
     if (auto* c = std::get_if<hash_check>(&rec)) {
         if (c->tick != next_tick_) {
-            return r::failure(at(start, "Hash record for tick " + std::to_string(c->tick) + " where the world is at tick " +
-                                            std::to_string(next_tick_)));
+            return r::failure(at(start, "Hash record for tick " + std::to_string(c->tick) +
+                                            " where the world is at tick " + std::to_string(next_tick_)));
         }
         return success_as<entry>(*c);
     }

@@ -21,7 +21,9 @@ bool is_known_content(fb::Content type) {
     return v >= static_cast<uint8_t>(fb::Content::Header) && v <= static_cast<uint8_t>(fb::Content::MAX);
 }
 
-std::string string_or_empty(const flatbuffers::String* s) { return s ? s->str() : std::string(); }
+std::string string_or_empty(const flatbuffers::String* s) {
+    return s ? s->str() : std::string();
+}
 
 header decode_header(const fb::Header& h) {
     header out;
@@ -152,7 +154,8 @@ protocol::result<record> decode_record(std::span<const uint8_t> frame) {
     options.check_alignment = true;
     flatbuffers::Verifier verifier(frame.data(), frame.size(), options);
     if (!verifier.VerifySizePrefixedBuffer<fb::Record>(record_identifier)) {
-        return r::failure("FlatBuffer verification failed: an offset, size, alignment or nesting limit is out of range");
+        return r::failure(
+            "FlatBuffer verification failed: an offset, size, alignment or nesting limit is out of range");
     }
     const fb::Record* rec = fb::GetSizePrefixedRecord(frame.data());
     if (!is_known_content(rec->content_type())) {

@@ -26,7 +26,9 @@ protocol::result<recorder> recorder::open(const std::string& path, const header&
     return r::success(std::move(rec));
 }
 
-recorder::recorder(recorder&& other) noexcept { *this = std::move(other); }
+recorder::recorder(recorder&& other) noexcept {
+    *this = std::move(other);
+}
 
 recorder& recorder::operator=(recorder&& other) noexcept {
     if (this != &other) {
@@ -45,7 +47,9 @@ recorder& recorder::operator=(recorder&& other) noexcept {
     return *this;
 }
 
-recorder::~recorder() { flush_quietly(); }
+recorder::~recorder() {
+    flush_quietly();
+}
 
 void recorder::flush_quietly() noexcept {
     // A destructor cannot report; the bytes are written if the disk takes them.

@@ -42,7 +42,9 @@ replay_report replayer::run(const replay_options& options) {
     if (!check(report.start_tick, file_header().start_hash)) return finish(report);
     if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
 
-    const auto reached_until = [&] { return options.until && world_.tick() == *options.until; };
+    const auto reached_until = [&] {
+        return options.until && world_.tick() == *options.until;
+    };
     for (;;) {
         auto next = reader_.next();
         // Past `until`, what is asked for is in hand: a problem further on (a recording cut

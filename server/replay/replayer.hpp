@@ -30,13 +30,13 @@ struct replay_options {
 
 struct replay_report {
     uint32_t start_tick = 0;
-    uint32_t final_tick = 0;      // the world's tick where the replay stopped
-    uint64_t final_hash = 0;      // the world's hash there
+    uint32_t final_tick = 0;  // the world's tick where the replay stopped
+    uint64_t final_hash = 0;  // the world's hash there
     uint32_t ticks_replayed = 0;
-    uint32_t hashes_checked = 0;  // the start hash, Hash records and the End record
-    bool complete = false;        // reached the End record, or `until`, with no problem
+    uint32_t hashes_checked = 0;            // the start hash, Hash records and the End record
+    bool complete = false;                  // reached the End record, or `until`, with no problem
     std::optional<hash_mismatch> mismatch;  // the first one
-    std::string error;            // a file problem ("<file>: byte offset N: ...") or a bad `until`
+    std::string error;                      // a file problem ("<file>: byte offset N: ...") or a bad `until`
 };
 
 class replayer {

@@ -11,7 +11,9 @@ namespace arena::replay {
 // The outcome of an operation that has no value: ok, or the reason it failed.
 using status = protocol::result<std::monostate>;
 
-inline status ok_status() { return status::success({}); }
+inline status ok_status() {
+    return status::success({});
+}
 
 // A successful result<Variant> holding `alt`, built in place. Why not result::success(alt):
 // moving the temporary variant it makes draws a false -Wmaybe-uninitialized from g++ 12 with

@@ -11,10 +11,10 @@
 namespace arena::replay {
 
 struct tick_record {
-    uint32_t tick = 0;                // the world's tick before this step
-    std::vector<uint32_t> joins;      // owner (player) ids, spawned in this order
-    std::vector<uint32_t> leaves;     // body ids removed, in this order
-    world::tick_inputs inputs;        // one per player body that consumed an input
+    uint32_t tick = 0;             // the world's tick before this step
+    std::vector<uint32_t> joins;   // owner (player) ids, spawned in this order
+    std::vector<uint32_t> leaves;  // body ids removed, in this order
+    world::tick_inputs inputs;     // one per player body that consumed an input
 };
 
 // Joins (world::spawn_player), then leaves (world::remove_body), then one step with the inputs.

@@ -54,7 +54,9 @@ std::optional<sample> exact_solution(const single_body_scenario& s, double t) {
     if (s.friction > 0 || (s.density > 0 && s.area > 0 && s.drag_coefficient > 0)) return std::nullopt;
     const double ax = static_cast<double>(s.force.x()) / s.mass + s.gravity.x();
     const double ay = static_cast<double>(s.force.y()) / s.mass + s.gravity.y();
-    auto at = [t](double v0, double a) { return v0 * t + 0.5 * a * t * t; };
+    auto at = [t](double v0, double a) {
+        return v0 * t + 0.5 * a * t * t;
+    };
     return sample{static_cast<real>(t),
                   static_cast<real>(at(s.velocity.x(), ax)),
                   static_cast<real>(at(s.velocity.y(), ay)),

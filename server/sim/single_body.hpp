@@ -11,16 +11,16 @@
 namespace arena::sim {
 
 struct single_body_scenario {
-    world::real dt = 1.0f;                 // s
+    world::real dt = 1.0f;  // s
     uint32_t steps = 10;
-    world::real mass = 1.0f;               // kg
-    world::vec2 force{0, 0};               // N, applied every step
-    world::vec2 velocity{0, 0};            // m/s, initial
-    world::vec2 gravity{0, 0};             // m/s²
-    world::real friction = 0.0f;           // μ: the body slides on a floor, N = m·|g|
-    world::real density = 0.0f;            // kg/m³ of the medium (0: no drag)
-    world::real drag_coefficient = 0.0f;   // Cd
-    world::real area = 0.0f;               // m², frontal area A
+    world::real mass = 1.0f;              // kg
+    world::vec2 force{0, 0};              // N, applied every step
+    world::vec2 velocity{0, 0};           // m/s, initial
+    world::vec2 gravity{0, 0};            // m/s²
+    world::real friction = 0.0f;          // μ: the body slides on a floor, N = m·|g|
+    world::real density = 0.0f;           // kg/m³ of the medium (0: no drag)
+    world::real drag_coefficient = 0.0f;  // Cd
+    world::real area = 0.0f;              // m², frontal area A
     world::integrator integrator = world::integrator::semi_implicit;
 };
 

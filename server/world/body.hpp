@@ -10,22 +10,22 @@
 namespace arena::world {
 
 struct body {
-    uint32_t id = 0;        // unique in its world, never reused; bodies are kept in id order
-    uint32_t owner = 0;     // player id that controls it; 0 = nobody
-    real mass = 1.0f;       // kg
-    real inv_mass = 1.0f;   // 1/kg, 0 = static
-    real inertia = 0.5f;    // kg·m², moment of inertia about the centre
-    real inv_inertia = 2.0f;  // 1/(kg·m²), 0 = never rotates
-    real radius = 1.0f;     // m
-    real restitution = 0.5f;  // [0, 1]
-    real drag_area = 0.0f;  // m², A·Cd
-    vec2 position{0, 0};    // m
-    vec2 velocity{0, 0};    // m/s
-    real angle = 0.0f;      // rad, in (−π, π]; facing = (cos, sin)
-    real angular_velocity = 0.0f;  // rad/s, counter-clockwise
-    vec2 force{0, 0};       // N, accumulated this step (thrust, gravity, normal force, user)
-    real torque = 0.0f;     // N·m, accumulated this step
-    vec2 resistance{0, 0};  // N, friction and drag this step: may stop the body, never reverse it
+    uint32_t id = 0;                // unique in its world, never reused; bodies are kept in id order
+    uint32_t owner = 0;             // player id that controls it; 0 = nobody
+    real mass = 1.0f;               // kg
+    real inv_mass = 1.0f;           // 1/kg, 0 = static
+    real inertia = 0.5f;            // kg·m², moment of inertia about the centre
+    real inv_inertia = 2.0f;        // 1/(kg·m²), 0 = never rotates
+    real radius = 1.0f;             // m
+    real restitution = 0.5f;        // [0, 1]
+    real drag_area = 0.0f;          // m², A·Cd
+    vec2 position{0, 0};            // m
+    vec2 velocity{0, 0};            // m/s
+    real angle = 0.0f;              // rad, in (−π, π]; facing = (cos, sin)
+    real angular_velocity = 0.0f;   // rad/s, counter-clockwise
+    vec2 force{0, 0};               // N, accumulated this step (thrust, gravity, normal force, user)
+    real torque = 0.0f;             // N·m, accumulated this step
+    vec2 resistance{0, 0};          // N, friction and drag this step: may stop the body, never reverse it
     real resistance_torque = 0.0f;  // N·m, angular damping this step, same rule
     uint32_t impulse_cooldown = 0;  // ticks until button 0 may fire again
 

@@ -22,15 +22,15 @@ struct cell_proxy {
 
 // Buffers reused from step to step so that the broadphase allocates only while the world grows.
 struct broadphase_scratch {
-    std::vector<uint64_t> items;        // cell << 32 | body index, sorted by cell (stable)
-    std::vector<uint64_t> swap_items;   // the radix sort's other buffer
-    std::vector<uint32_t> count;        // radix sort: digit → next slot
-    std::vector<cell_proxy> unsorted;   // the bodies' proxies in index order
-    std::vector<cell_proxy> proxies;    // the bodies sorted by cell, stable (index order within a cell)
-    std::vector<uint32_t> run_cell;     // occupied cells, increasing (see bucket_by_cell)
-    std::vector<uint32_t> run_start;    // run → first slot in `proxies` (size runs + 1)
-    std::vector<uint32_t> cell_start;   // cell → first slot in `proxies` (size cells + 1); empty
-                                        // when the grid has too many cells for a table
+    std::vector<uint64_t> items;                       // cell << 32 | body index, sorted by cell (stable)
+    std::vector<uint64_t> swap_items;                  // the radix sort's other buffer
+    std::vector<uint32_t> count;                       // radix sort: digit → next slot
+    std::vector<cell_proxy> unsorted;                  // the bodies' proxies in index order
+    std::vector<cell_proxy> proxies;                   // the bodies sorted by cell, stable (index order within a cell)
+    std::vector<uint32_t> run_cell;                    // occupied cells, increasing (see bucket_by_cell)
+    std::vector<uint32_t> run_start;                   // run → first slot in `proxies` (size runs + 1)
+    std::vector<uint32_t> cell_start;                  // cell → first slot in `proxies` (size cells + 1); empty
+                                                       // when the grid has too many cells for a table
     std::vector<std::pair<uint32_t, uint32_t>> pairs;  // candidate (a, b) indices, a < b
 };
 
@@ -97,7 +97,9 @@ inline uint32_t cell_index(const grid& g, const vec2& p) {
 void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch);
 // The largest wrapping grid that gets a cell table: a table costs a pass over its cells, so a
 // sparse wrapping world (the asteroids preset has about 28 cells a body) walks the runs instead.
-inline size_t max_table_cells(size_t bodies) { return 8 * bodies + (size_t{1} << 16); }
+inline size_t max_table_cells(size_t bodies) {
+    return 8 * bodies + (size_t{1} << 16);
+}
 // The run of `cell` in scratch.run_cell, or no_run when the cell is empty.
 inline constexpr uint32_t no_run = ~0u;
 inline uint32_t find_run(const broadphase_scratch& s, uint32_t cell) {
@@ -125,8 +127,7 @@ void find_candidate_pairs(std::span<const body> bodies, const world_config& conf
 // so that the caller's test runs inline: the contact detection's distance test per candidate,
 // behind a call and a vector of pairs, was a fifth of a dense step.
 template <class Visit>
-void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch,
-                             Visit&& visit);
+void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch, Visit&& visit);
 
 // Displacement from a to b: the shortest one when the world wraps. Inline: it runs for every
 // candidate pair and every contact in every solver iteration.
@@ -192,7 +193,7 @@ void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadp
     // occupied cell, in the table or among the runs.
     static constexpr int offsets[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
     const uint32_t runs = static_cast<uint32_t>(s.run_cell.size());
-    uint32_t below = 0;  // cursor for the next row's cells, which grow with the current cell
+    uint32_t below = 0;               // cursor for the next row's cells, which grow with the current cell
     uint32_t row = 0, row_start = 0;  // the current cell's row, found by stepping (no division)
     for (uint32_t r = 0; r < runs; ++r) {
         const uint32_t c = s.run_cell[r];

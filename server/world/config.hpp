@@ -29,52 +29,52 @@ struct fluid_region {
 
 // A body's material and shape, used for players and rocks.
 struct body_material {
-    real density = 1.0f;       // kg/m² (2D: mass = density·π·r²); ignored when mass > 0
-    real mass = 0.0f;          // kg; > 0 overrides density
-    real radius = 1.0f;        // m, > 0
-    real restitution = 0.5f;   // [0, 1]: 0 absorbs an impact, 1 bounces back fully
-    real drag_area = 0.0f;     // m², A·Cd: frontal area times drag coefficient
+    real density = 1.0f;          // kg/m² (2D: mass = density·π·r²); ignored when mass > 0
+    real mass = 0.0f;             // kg; > 0 overrides density
+    real radius = 1.0f;           // m, > 0
+    real restitution = 0.5f;      // [0, 1]: 0 absorbs an impact, 1 bounces back fully
+    real drag_area = 0.0f;        // m², A·Cd: frontal area times drag coefficient
     bool fixed_rotation = false;  // true: never rotates (infinite moment of inertia)
 };
 
 // How a player's input becomes forces on its body.
 struct control_config {
-    real thrust_force = 100.0f;  // N at thrust = 1
-    real turn_torque = 50.0f;    // N·m at turn = 1
-    real impulse = 20.0f;        // N·s when button 0 fires
+    real thrust_force = 100.0f;            // N at thrust = 1
+    real turn_torque = 50.0f;              // N·m at turn = 1
+    real impulse = 20.0f;                  // N·s when button 0 fires
     uint32_t impulse_cooldown_ticks = 30;  // ticks between two impulses
-    bool thrust_along_facing = true;   // false: thrust pushes along +x (running, platformer)
-    bool impulse_upward = false;       // true: the impulse pushes along +y (a jump)
-    bool impulse_needs_ground = false; // true: the impulse fires only while on the floor
+    bool thrust_along_facing = true;       // false: thrust pushes along +x (running, platformer)
+    bool impulse_upward = false;           // true: the impulse pushes along +y (a jump)
+    bool impulse_needs_ground = false;     // true: the impulse fires only while on the floor
 };
 
 // The non-player bodies spawned from the seed when the world is created.
 struct rock_config {
     uint32_t count = 0;
-    real min_radius = 1.0f;  // m
-    real max_radius = 3.0f;  // m
-    real max_speed = 5.0f;   // m/s, each velocity component uniform in [−max, max]
+    real min_radius = 1.0f;    // m
+    real max_radius = 3.0f;    // m
+    real max_speed = 5.0f;     // m/s, each velocity component uniform in [−max, max]
     body_material material{};  // its radius is ignored: drawn in [min_radius, max_radius]
 };
 
 struct world_config {
-    real dt = 1.0f / 60.0f;                   // s, the fixed step
+    real dt = 1.0f / 60.0f;  // s, the fixed step
     enum integrator integrator = integrator::semi_implicit;
-    vec2 gravity{0, 0};                       // m/s²
-    real air_density = 1.2f;                  // kg/m³, the medium outside fluid regions
-    std::vector<fluid_region> fluids{};       // checked in order; the first containing a body wins
+    vec2 gravity{0, 0};                  // m/s²
+    real air_density = 1.2f;             // kg/m³, the medium outside fluid regions
+    std::vector<fluid_region> fluids{};  // checked in order; the first containing a body wins
     enum boundary boundary = boundary::open;
-    vec2 size{200, 200};                      // m, the world is [0, size.x] × [0, size.y]
-    real floor_friction = 0.0f;               // μ, kinetic friction of the floor
-    real angular_damping = 0.0f;              // 1/s, fraction of ω lost per second
-    uint32_t velocity_iterations = 8;         // contact impulse iterations per step
-    uint32_t position_iterations = 3;         // penetration correction iterations per step
-    real restitution_threshold = 1.0f;        // m/s: slower impacts do not bounce (no jitter at rest)
-    real penetration_slop = 0.005f;           // m of overlap left alone (stable resting contact)
-    real speculative_distance = 0.02f;        // m: contacts start this far before touching
-    real correction_fraction = 0.2f;          // share of the remaining overlap removed per iteration
-    real max_correction = 0.2f;               // m, largest positional push per contact per iteration
-    uint32_t max_bodies = 1u << 20;           // spawns beyond this fail
+    vec2 size{200, 200};                // m, the world is [0, size.x] × [0, size.y]
+    real floor_friction = 0.0f;         // μ, kinetic friction of the floor
+    real angular_damping = 0.0f;        // 1/s, fraction of ω lost per second
+    uint32_t velocity_iterations = 8;   // contact impulse iterations per step
+    uint32_t position_iterations = 3;   // penetration correction iterations per step
+    real restitution_threshold = 1.0f;  // m/s: slower impacts do not bounce (no jitter at rest)
+    real penetration_slop = 0.005f;     // m of overlap left alone (stable resting contact)
+    real speculative_distance = 0.02f;  // m: contacts start this far before touching
+    real correction_fraction = 0.2f;    // share of the remaining overlap removed per iteration
+    real max_correction = 0.2f;         // m, largest positional push per contact per iteration
+    uint32_t max_bodies = 1u << 20;     // spawns beyond this fail
     body_material player{};
     control_config control{};
     rock_config rocks{};

@@ -18,11 +18,20 @@ bool has_wall(const world_config& config, wall w) {
 // pointing from the body into the wall.
 real wall_separation(const body& b, wall w, const world_config& config, vec2& normal) {
     switch (w) {
-        case wall::left: normal = {-1, 0}; return b.position.x() - b.radius;
-        case wall::right: normal = {1, 0}; return config.size.x() - b.position.x() - b.radius;
-        case wall::bottom: normal = {0, -1}; return b.position.y() - b.radius;
-        case wall::top: normal = {0, 1}; return config.size.y() - b.position.y() - b.radius;
-        case wall::none: break;
+        case wall::left:
+            normal = {-1, 0};
+            return b.position.x() - b.radius;
+        case wall::right:
+            normal = {1, 0};
+            return config.size.x() - b.position.x() - b.radius;
+        case wall::bottom:
+            normal = {0, -1};
+            return b.position.y() - b.radius;
+        case wall::top:
+            normal = {0, 1};
+            return config.size.y() - b.position.y() - b.radius;
+        case wall::none:
+            break;
     }
     return 0;
 }
@@ -73,22 +82,24 @@ void detect_contacts(std::span<const body> bodies, const grid& g, const world_co
     out.clear();
     // The distance test reads the broadphase's proxies; only a contact reads the bodies. Inlined
     // into both of the walk's loops: GCC left it a call, a tenth of a dense step.
-    for_each_candidate_pair(bodies, g, scratch, [&](const cell_proxy& p, const cell_proxy& q) __attribute__((always_inline)) {
-        // The test is symmetric (negating a displacement and swapping a sum are exact), so only
-        // a contact puts the pair in index order: a choice per candidate was a mispredicted branch.
-        const real reach = p.radius + q.radius + config.speculative_distance;
-        if (displacement(p.position, q.position, config).squaredNorm() >= reach * reach) return;
-        const bool p_first = p.index < q.index;
-        const cell_proxy& pa = p_first ? p : q;
-        const cell_proxy& pb = p_first ? q : p;
-        if (bodies[pa.index].is_static() && bodies[pb.index].is_static()) return;
-        contact c;
-        c.a = pa.index;
-        c.b = pb.index;
-        c.separation = pair_separation(displacement(pa.position, pb.position, config), pa.radius, pb.radius, c.normal);
-        prepare(bodies, c, config);
-        out.push_back(c);
-    });
+    for_each_candidate_pair(
+        bodies, g, scratch, [&](const cell_proxy& p, const cell_proxy& q) __attribute__((always_inline)) {
+            // The test is symmetric (negating a displacement and swapping a sum are exact), so only
+            // a contact puts the pair in index order: a choice per candidate was a mispredicted branch.
+            const real reach = p.radius + q.radius + config.speculative_distance;
+            if (displacement(p.position, q.position, config).squaredNorm() >= reach * reach) return;
+            const bool p_first = p.index < q.index;
+            const cell_proxy& pa = p_first ? p : q;
+            const cell_proxy& pb = p_first ? q : p;
+            if (bodies[pa.index].is_static() && bodies[pb.index].is_static()) return;
+            contact c;
+            c.a = pa.index;
+            c.b = pb.index;
+            c.separation =
+                pair_separation(displacement(pa.position, pb.position, config), pa.radius, pb.radius, c.normal);
+            prepare(bodies, c, config);
+            out.push_back(c);
+        });
     if (config.boundary != boundary::walls && config.boundary != boundary::floor) return;
     const bool four_walls = config.boundary == boundary::walls;
     for (uint32_t i = 0; i < bodies.size(); ++i) {
@@ -149,8 +160,8 @@ void correct_penetration(std::span<body> bodies, std::span<const contact> contac
             vec2 normal{0, 0};
             const real separation = measure(bodies, c, config, normal);
             if (separation >= -config.penetration_slop) continue;
-            const real push = std::min(config.correction_fraction * (-separation - config.penetration_slop),
-                                       config.max_correction);
+            const real push =
+                std::min(config.correction_fraction * (-separation - config.penetration_slop), config.max_correction);
             const vec2 p = normal * (push * c.effective_mass);
             body& a = bodies[c.a];
             a.position -= p * a.inv_mass;

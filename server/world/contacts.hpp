@@ -15,15 +15,15 @@ namespace arena::world {
 enum class wall : int8_t { none = -1, left, right, bottom, top };
 
 struct contact {
-    uint32_t a = 0;          // body index
-    uint32_t b = 0;          // body index; unused when `with` is a wall
+    uint32_t a = 0;  // body index
+    uint32_t b = 0;  // body index; unused when `with` is a wall
     enum wall with = wall::none;
-    vec2 normal{1, 0};       // unit, from a towards b (or towards the wall)
-    real separation = 0;     // m, negative when overlapping
-    real effective_mass = 0; // kg, 1 / (1/m_a + 1/m_b)
-    real bounce = 0;         // m/s, the least relative normal velocity allowed: the bounce, or
-                             // −separation/Δt for a gap that may close this step
-    real impulse = 0;        // N·s, accumulated normal impulse (never pulls)
+    vec2 normal{1, 0};        // unit, from a towards b (or towards the wall)
+    real separation = 0;      // m, negative when overlapping
+    real effective_mass = 0;  // kg, 1 / (1/m_a + 1/m_b)
+    real bounce = 0;          // m/s, the least relative normal velocity allowed: the bounce, or
+                              // −separation/Δt for a gap that may close this step
+    real impulse = 0;         // N·s, accumulated normal impulse (never pulls)
 };
 
 // Every pair closer than the speculative distance and every body that near a wall, pairs first,

@@ -38,7 +38,8 @@ world_config platformer_preset() {
     c.fluids = {fluid_region{.min = {60, 0}, .max = {85, 12}, .density = 1000}};
     // A 70 kg runner that never rotates: 1000 N of running force against μN = 412 N of
     // friction, a 350 N·s jump (Δv = 5 m/s).
-    c.player = {.density = 1, .mass = 70, .radius = 0.5f, .restitution = 0.1f, .drag_area = 0.5f, .fixed_rotation = true};
+    c.player = {
+        .density = 1, .mass = 70, .radius = 0.5f, .restitution = 0.1f, .drag_area = 0.5f, .fixed_rotation = true};
     c.control = {.thrust_force = 1000,
                  .turn_torque = 0,
                  .impulse = 350,
@@ -60,6 +61,8 @@ std::optional<world_config> preset_by_name(std::string_view name) {
     return std::nullopt;
 }
 
-std::vector<std::string_view> preset_names() { return {"asteroids", "platformer"}; }
+std::vector<std::string_view> preset_names() {
+    return {"asteroids", "platformer"};
+}
 
 }  // namespace arena::world

@@ -19,8 +19,7 @@ void view_index::build(std::span<const body> bodies, const world_config& config,
     seen_.assign((bodies.size() + 63) / 64, 0);
 }
 
-void view_index::visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre,
-                            std::vector<uint32_t>& out) const {
+void view_index::visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre, std::vector<uint32_t>& out) const {
     const uint32_t cell = cy * grid_.stride + cx;
     const slot_range slots = cell_slots(scratch_, cell);
     if (inside) {
@@ -67,8 +66,10 @@ uint32_t wrapped(int64_t c, uint32_t cells) {
 void view_index::query(vec2 centre, std::vector<uint32_t>& out) {
     const size_t first_new = out.size();
     const bool wraps = grid_.wraps;
-    const cell_span xs = covered(centre.x() - reach_, centre.x() + reach_, grid_.origin.x(), grid_.cell.x(), grid_.nx, wraps);
-    const cell_span ys = covered(centre.y() - reach_, centre.y() + reach_, grid_.origin.y(), grid_.cell.y(), grid_.ny, wraps);
+    const cell_span xs =
+        covered(centre.x() - reach_, centre.x() + reach_, grid_.origin.x(), grid_.cell.x(), grid_.nx, wraps);
+    const cell_span ys =
+        covered(centre.y() - reach_, centre.y() + reach_, grid_.origin.y(), grid_.cell.y(), grid_.ny, wraps);
     // A cell is wholly inside when its farthest corner is within the radius of the centre:
     // every body there passes (|d| ≤ radius ≤ radius + its own radius). The corners are those
     // of the cell's copy the walk is at (cx, cy before wrapping); in a wrapping world a body's

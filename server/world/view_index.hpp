@@ -24,14 +24,13 @@ public:
 
 private:
     // `inside`: the whole cell lies within the radius, so every body in it is seen.
-    void visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre,
-                    std::vector<uint32_t>& out) const;
+    void visit_cell(uint32_t cx, uint32_t cy, bool inside, vec2 centre, std::vector<uint32_t>& out) const;
 
     world_config config_;
     grid grid_;
     broadphase_scratch scratch_;
     real radius_ = 0;
-    real reach_ = 0;  // radius + the largest body radius: how far a visible centre can be
+    real reach_ = 0;              // radius + the largest body radius: how far a visible centre can be
     std::vector<uint64_t> seen_;  // one bit per body, all zero between queries
 };
 

@@ -10,11 +10,15 @@ namespace arena::world {
 
 namespace {
 
-bool less_by_id(const body& b, uint32_t id) { return b.id < id; }
+bool less_by_id(const body& b, uint32_t id) {
+    return b.id < id;
+}
 
 }  // namespace
 
-world::world(const world_config& config, uint64_t seed) : config_(config), rng_(seed) { spawn_rocks(); }
+world::world(const world_config& config, uint64_t seed) : config_(config), rng_(seed) {
+    spawn_rocks();
+}
 
 void world::step(const tick_inputs& inputs) {
     apply_inputs(inputs);
@@ -95,7 +99,9 @@ void world::wrap_touched_bodies() {
     }
 }
 
-bool world::on_ground(const body& b) const { return touches_floor(b, config_); }
+bool world::on_ground(const body& b) const {
+    return touches_floor(b, config_);
+}
 
 std::optional<uint32_t> world::add_body(body b) {
     if (bodies_.size() >= config_.max_bodies) return std::nullopt;
@@ -136,7 +142,9 @@ body* world::find(uint32_t id) {
     return at != bodies_.end() && at->id == id ? &*at : nullptr;
 }
 
-const body* world::find(uint32_t id) const { return const_cast<world*>(this)->find(id); }
+const body* world::find(uint32_t id) const {
+    return const_cast<world*>(this)->find(id);
+}
 
 void world::spawn_rocks() {
     const rock_config& rocks = config_.rocks;

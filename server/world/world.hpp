@@ -53,8 +53,8 @@ private:
     void apply_inputs(const tick_inputs& inputs);
     body_extent integrate_velocities();  // forces, velocities (and explicit Euler's positions)
     void detect_collisions(const body_extent& extent);
-    void integrate_positions();          // positions, clearing, wrapping of bodies in no contact
-    void wrap_touched_bodies();          // wrapping of the bodies in contacts
+    void integrate_positions();  // positions, clearing, wrapping of bodies in no contact
+    void wrap_touched_bodies();  // wrapping of the bodies in contacts
     void spawn_rocks();
     // A spot in [r, size − r]² that overlaps nobody `is_free` knows of (a few tries; a crowded
     // world takes the last try).

@@ -7,7 +7,9 @@ using namespace arena::auth;
 
 namespace {
 
-token_secret secret(const std::string& bytes) { return std::get<token_secret>(token_secret::from_bytes(bytes)); }
+token_secret secret(const std::string& bytes) {
+    return std::get<token_secret>(token_secret::from_bytes(bytes));
+}
 
 const std::string key_a(32, 'a');
 const std::string key_b(32, 'b');

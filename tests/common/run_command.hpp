@@ -25,6 +25,8 @@ inline command_result run_command(const std::string& command) {
 }
 
 // An Arena program from this build: ARENA_BIN_DIR/name.
-inline std::string program(const std::string& name) { return std::string(ARENA_BIN_DIR) + "/" + name; }
+inline std::string program(const std::string& name) {
+    return std::string(ARENA_BIN_DIR) + "/" + name;
+}
 
 }  // namespace arena::test

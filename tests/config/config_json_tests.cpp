@@ -47,7 +47,8 @@ TEST_CASE("a wrong field is named in the error", "[config]") {
     CHECK(error_of("{ not json").find("invalid JSON") != std::string::npos);
     // Regression (fuzz_config): a number too large for a double threw out_of_range, which
     // escaped the parser and ended the process.
-    CHECK(error_of(R"({"rocks": 1111111111111111111111e1111111111111111111})").find("invalid JSON") != std::string::npos);
+    CHECK(error_of(R"({"rocks": 1111111111111111111111e1111111111111111111})").find("invalid JSON") !=
+          std::string::npos);
 }
 
 TEST_CASE("a missing config file is reported with its path", "[config]") {

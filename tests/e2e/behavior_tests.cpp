@@ -110,8 +110,10 @@ TEST_CASE("seek turns towards the body it chases", "[bots][behavior]") {
     REQUIRE(bot.target_id() == 2);
     const world::player_input in = bot.next({&own});
     // Counter-clockwise (positive turn) towards +y, clockwise towards −y.
-    if (target_y > 100) CHECK(in.turn > 0.5f);
-    else CHECK(in.turn < -0.5f);
+    if (target_y > 100)
+        CHECK(in.turn > 0.5f);
+    else
+        CHECK(in.turn < -0.5f);
     CHECK(in.thrust == 0.0f);  // not facing it yet: turn first
 }
 

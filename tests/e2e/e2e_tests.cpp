@@ -3,9 +3,9 @@
 #include <signal.h>
 
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -37,10 +37,9 @@ struct server {
         process.wait_for(3s);
     }
     static std::vector<std::string> args(const std::vector<std::string>& extra) {
-        std::vector<std::string> a{"--bind",       "127.0.0.1", "--port",   "0",         "--tick-rate",
-                                   "60",           "--snapshot-rate", "20", "--max-players", "64",
-                                   "--preset",     "asteroids", "--seed",   "1",         "--duration",
-                                   "30"};
+        std::vector<std::string> a{"--bind",          "127.0.0.1", "--port",        "0",  "--tick-rate", "60",
+                                   "--snapshot-rate", "20",        "--max-players", "64", "--preset",    "asteroids",
+                                   "--seed",          "1",         "--duration",    "30"};
         a.insert(a.end(), extra.begin(), extra.end());
         return a;
     }
@@ -152,9 +151,9 @@ TEST_CASE("bots join, get snapshots at the snapshot rate and predict their own b
 TEST_CASE("bots decode delta snapshots of their view and acknowledge them", "[e2e][delta]") {
     temp_dir dir;
     server s(dir, {"--view-radius", "120"});
-    const bots_run r = run_bots(dir, s.port,
-                                {"--bots", "40", "--duration", "6", "--behavior", "mixed", "--seed", "3",
-                                 "--connect-rate", "100"});
+    const bots_run r =
+        run_bots(dir, s.port,
+                 {"--bots", "40", "--duration", "6", "--behavior", "mixed", "--seed", "3", "--connect-rate", "100"});
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const json& j = r.report;
@@ -212,8 +211,8 @@ TEST_CASE("slow readers are dropped and do not slow the others down", "[e2e]") {
     std::ofstream(config) << R"({"preset": "asteroids", "size": [1500, 1500], "rocks": {"count": 600}})";
     const std::string stats = dir.file("stats.json");
     {
-        server s(dir, {"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--stats-json", stats,
-                       "--view-radius", "0"});
+        server s(dir, {"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--stats-json",
+                       stats, "--view-radius", "0"});
         const bots_run r = run_bots(dir, s.port,
                                     {"--bots", "20", "--duration", "5", "--seed", "8", "--misbehave", "slow-reader",
                                      "--misbehave-share", "0.25", "--quiet", "--full-snapshots"});
@@ -254,8 +253,9 @@ TEST_CASE("a churn of joining and leaving bots leaves no leak and no growth", "[
         const std::string log = dir.file("wave" + std::to_string(launched) + ".log");
         waves.push_back(std::make_unique<child_process>(
             bin_dir + "/arena-bots",
-            std::vector<std::string>{"--host", "127.0.0.1", "--port", std::to_string(*port), "--bots", "12", "--duration", "2",
-                                     "--connect-rate", "0", "--seed", std::to_string(launched), "--quiet"},
+            std::vector<std::string>{"--host", "127.0.0.1", "--port", std::to_string(*port), "--bots", "12",
+                                     "--duration", "2", "--connect-rate", "0", "--seed", std::to_string(launched),
+                                     "--quiet"},
             log));
         ++launched;
         bots_total += 12;
@@ -298,9 +298,11 @@ TEST_CASE("bots fail with exit code 1 when no server answers", "[e2e]") {
 
 TEST_CASE("arena-bots exits with 2 on a usage error", "[bots][cli]") {
     temp_dir dir;
-    for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"--behavior", "dance"}, {"--bots", "0"}, {"--misbehave", "rude"},
-          {"--misbehave-share", "2"}, {"--no-such-flag"}}) {
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"--behavior", "dance"},
+                                                 {"--bots", "0"},
+                                                 {"--misbehave", "rude"},
+                                                 {"--misbehave-share", "2"},
+                                                 {"--no-such-flag"}}) {
         child_process bots(bin_dir + "/arena-bots", args, dir.file("usage.log"));
         const auto code = bots.wait_for(5s);
         REQUIRE(code.has_value());

@@ -79,7 +79,8 @@ TEST_CASE("inputs and pings appended with the shared builder decode back", "[bot
         const auto message = protocol::verify_message(reader.frame());
         REQUIRE(message.ok());
         seen.push_back(message.value->payload_type());
-        if (seen.size() == 1) CHECK(protocol::decode_input(*message.value).value == protocol::input_msg{7, 0.25f, -1.0f, 1});
+        if (seen.size() == 1)
+            CHECK(protocol::decode_input(*message.value).value == protocol::input_msg{7, 0.25f, -1.0f, 1});
         if (seen.size() == 2) CHECK(protocol::decode_ping(*message.value).value.client_time == 0x0102030405060708ULL);
         // The NaN input is well formed; the server's decoder is what refuses it.
         if (seen.size() == 3) CHECK_FALSE(protocol::decode_input(*message.value).ok());

@@ -40,7 +40,9 @@ struct server_world {
     }
 };
 
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(float a, float b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // Every field the world's state holds for a body, bit for bit (impulse_cooldown included:
 // it is not on the wire, the predictor must carry it itself).

@@ -29,8 +29,7 @@ temp_dir::~temp_dir() {
     std::filesystem::remove_all(path_, ignored);
 }
 
-child_process::child_process(const std::string& program, const std::vector<std::string>& args,
-                             std::string output_file)
+child_process::child_process(const std::string& program, const std::vector<std::string>& args, std::string output_file)
     : output_file_(std::move(output_file)) {
     std::vector<char*> argv;
     argv.push_back(const_cast<char*>(program.c_str()));
@@ -73,7 +72,9 @@ void child_process::signal(int signo) {
     if (running()) ::kill(pid_, signo);
 }
 
-std::string child_process::output() const { return read_file(output_file_); }
+std::string child_process::output() const {
+    return read_file(output_file_);
+}
 
 std::optional<unsigned> wait_for_listening(const child_process& server, std::chrono::milliseconds timeout) {
     // "listening on HOST:PORT", a whole line (the server flushes it in one write).

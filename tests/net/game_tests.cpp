@@ -44,7 +44,9 @@ game_config make_config(uint32_t max_players = 64, uint32_t max_inputs_per_secon
     return c;
 }
 
-protocol::hello_msg hello(uint16_t version = protocol::protocol_version) { return {version, "tester", ""}; }
+protocol::hello_msg hello(uint16_t version = protocol::protocol_version) {
+    return {version, "tester", ""};
+}
 
 }  // namespace
 
@@ -136,7 +138,8 @@ TEST_CASE("a dropped player comes back to the same body within the grace period"
     CHECK(std::get<uint32_t>(back) == id);
     g.tick();
     REQUIRE(second.frames.size() == 1);
-    auto welcome = protocol::decode_welcome(*protocol::verify_message(second.frames[0], protocol::server_frame_limits).value);
+    auto welcome =
+        protocol::decode_welcome(*protocol::verify_message(second.frames[0], protocol::server_frame_limits).value);
     REQUIRE(welcome);
     CHECK(welcome.value.player_id == id);
     CHECK(g.state().find(welcome.value.entity_id)->owner == id);

@@ -154,7 +154,8 @@ void test_client::send_bytes(const std::vector<uint8_t>& bytes) {
 
 bool test_client::fill(size_t want, std::chrono::steady_clock::time_point deadline) {
     while (buffer_.size() < want) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) return false;
         pollfd p{fd_, POLLIN, 0};
         if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return false;
@@ -179,7 +180,8 @@ std::optional<std::vector<uint8_t>> test_client::read_frame(std::chrono::millise
 std::optional<std::vector<uint8_t>> test_client::read_until(protocol::Payload type, std::chrono::milliseconds timeout) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     while (true) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) return std::nullopt;
         auto frame = read_frame(left);
         if (!frame) return std::nullopt;

@@ -4,11 +4,11 @@
 #include <sys/types.h>
 
 #include <chrono>
-#include <mutex>
-#include <thread>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "protocol/arena_generated.h"

@@ -8,9 +8,9 @@
 #include <limits>
 #include <thread>
 
+#include "common/run_command.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/version.hpp"
-#include "common/run_command.hpp"
 #include "server_process.hpp"
 
 using namespace arena;
@@ -54,7 +54,9 @@ int count_snapshots(test_client& c, std::chrono::milliseconds duration) {
     return count;
 }
 
-std::string temp_path(const std::string& name) { return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name; }
+std::string temp_path(const std::string& name) {
+    return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name;
+}
 
 }  // namespace
 
@@ -74,7 +76,8 @@ TEST_CASE("a client joins, sends inputs and receives snapshots that follow them"
         c.client.send_frame(protocol::encode_input({++sequence, 1.0f, 0.0f, 0}));
         const auto next = start + sequence * 16667us;
         while (std::chrono::steady_clock::now() < next) {
-            auto frame = c.client.read_frame(std::chrono::duration_cast<std::chrono::milliseconds>(next - std::chrono::steady_clock::now()) + 1ms);
+            auto frame = c.client.read_frame(
+                std::chrono::duration_cast<std::chrono::milliseconds>(next - std::chrono::steady_clock::now()) + 1ms);
             if (!frame) continue;
             const protocol::Message* m = message_of(*frame);
             REQUIRE(m);
@@ -143,9 +146,14 @@ TEST_CASE("garbage, an oversize length and a NaN input close only that client", 
         protocol::RejectCode expected;
     };
     const std::vector<bad_case> cases = {
-        {"garbage", [](test_client& c) { c.send_bytes({16, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}); },
+        {"garbage",
+         [](test_client& c) { c.send_bytes({16, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}); },
          protocol::RejectCode::bad_request},
-        {"oversize", [](test_client& c) { c.send_bytes({0x01, 0x00, 0x01, 0x00}); }, protocol::RejectCode::too_large},
+        {"oversize",
+         [](test_client& c) {
+             c.send_bytes({0x01, 0x00, 0x01, 0x00});
+         },
+         protocol::RejectCode::too_large},
         {"nan",
          [](test_client& c) {
              c.send_frame(protocol::encode_input({1, std::numeric_limits<float>::quiet_NaN(), 0, 0}));
@@ -171,7 +179,8 @@ TEST_CASE("a client that never reads keeps the server's memory bounded and is dr
     // socket fills within a second.
     const std::string config = temp_path("big.json");
     std::ofstream(config) << R"({"preset": "asteroids", "size": [2000, 2000], "rocks": {"count": 1000}})";
-    server_process server({"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--view-radius", "0"});
+    server_process server(
+        {"--config", config, "--stall-timeout", "1", "--socket-send-buffer", "65536", "--view-radius", "0"});
     joined_client good(server.port(), "good");
     joined_client sleeper(server.port(), "sleeper", 4096);  // never reads again
     count_snapshots(good.client, 500ms);
@@ -275,7 +284,8 @@ TEST_CASE("a recorded live session replays with every hash matching", "[net][e2e
     std::remove(recording.c_str());
 }
 
-TEST_CASE("a thousand connections opened at once are refused beyond the limits while players play on", "[net][e2e][limits]") {
+TEST_CASE("a thousand connections opened at once are refused beyond the limits while players play on",
+          "[net][e2e][limits]") {
     const std::string stats = temp_path("flood-stats.json");
     server_process server({"--max-pending-handshakes", "32", "--handshake-timeout", "1", "--stats-json", stats});
     joined_client good(server.port(), "good");

@@ -46,9 +46,13 @@ game_config delta_config(float view_radius, uint32_t delta_history = 32) {
 }
 
 // Ticks a snapshot stays usable as a baseline: the server keeps the last delta_history.
-uint32_t kept_ticks(const game_config& c) { return c.delta_history * snapshot_interval; }
+uint32_t kept_ticks(const game_config& c) {
+    return c.delta_history * snapshot_interval;
+}
 
-protocol::hello_msg hello(bool delta) { return {protocol::protocol_version, "tester", "", delta}; }
+protocol::hello_msg hello(bool delta) {
+    return {protocol::protocol_version, "tester", "", delta};
+}
 
 // Keeps what the game sends; the test decides what the client makes of it.
 struct recording_client : participant {
@@ -179,8 +183,7 @@ struct decoded_snapshot {
 // the server's choice.
 struct delta_session {
     // earlier: another delta client, joined ticks_before_join ticks before this one.
-    explicit delta_session(const game_config& config, participant* earlier = nullptr,
-                           uint32_t ticks_before_join = 0)
+    explicit delta_session(const game_config& config, participant* earlier = nullptr, uint32_t ticks_before_join = 0)
         : g(config, world::asteroids_preset()) {
         if (earlier != nullptr) REQUIRE(std::holds_alternative<uint32_t>(g.join(*earlier, hello(true))));
         for (uint32_t k = 0; k < ticks_before_join; ++k) g.tick();
@@ -215,8 +218,12 @@ struct delta_session {
 
 // --- The long random session -------------------------------------------------------------
 
-bool one_in(world::rng& rng, uint64_t n) { return rng.next_u64() % n == 0; }
-uint32_t below(world::rng& rng, uint32_t n) { return static_cast<uint32_t>(rng.next_u64() % n); }
+bool one_in(world::rng& rng, uint64_t n) {
+    return rng.next_u64() % n == 0;
+}
+uint32_t below(world::rng& rng, uint32_t n) {
+    return static_cast<uint32_t>(rng.next_u64() % n);
+}
 
 constexpr uint32_t max_ack_lag = 24;  // ticks an acknowledgement may take to reach the server
 
@@ -229,17 +236,17 @@ struct sim_client {
     bool delta = true;
     protocol::delta::receiver rx{tick_rate};
     uint32_t sequence = 0;
-    uint32_t acked = 0;          // the snapshot_ack of the last Input sent: what the server holds
-    uint32_t welcomed_at = 0;    // tick of its Welcome
-    uint32_t first_tick = 0;     // the first snapshot this connection was sent
-    uint32_t last_tick = 0;      // the newest
-    uint32_t loss_per_256 = 0;   // chance that a snapshot is lost
-    uint32_t burst_until = 0;    // every snapshot before this tick is lost
-    uint32_t silent_until = 0;   // no Input at all before this tick
-    uint32_t frozen_until = 0;   // before this tick Inputs carry frozen_ack (acks withheld)
+    uint32_t acked = 0;         // the snapshot_ack of the last Input sent: what the server holds
+    uint32_t welcomed_at = 0;   // tick of its Welcome
+    uint32_t first_tick = 0;    // the first snapshot this connection was sent
+    uint32_t last_tick = 0;     // the newest
+    uint32_t loss_per_256 = 0;  // chance that a snapshot is lost
+    uint32_t burst_until = 0;   // every snapshot before this tick is lost
+    uint32_t silent_until = 0;  // no Input at all before this tick
+    uint32_t frozen_until = 0;  // before this tick Inputs carry frozen_ack (acks withheld)
     uint32_t frozen_ack = 0;
-    uint32_t ack_lag = 0;        // ticks an ack takes to arrive (late acks)
-    std::deque<uint32_t> acks;   // rx.ack() after each of the last ticks, newest last
+    uint32_t ack_lag = 0;       // ticks an ack takes to arrive (late acks)
+    std::deque<uint32_t> acks;  // rx.ack() after each of the last ticks, newest last
 };
 
 // A player's place in the session: connected, waiting to reconnect, or empty.
@@ -462,7 +469,7 @@ TEST_CASE("an ack of a snapshot the server no longer keeps, or never sent, gets 
         const uint32_t first = s.next_snapshot(std::nullopt).tick;
         REQUIRE(others < first);
         REQUIRE(first + snapshot_interval - others < kept_ticks(config));  // not too old at the next frame
-        CHECK(s.next_snapshot(others).baseline_tick == 0);  // still kept, but another client's
+        CHECK(s.next_snapshot(others).baseline_tick == 0);                 // still kept, but another client's
         const uint32_t now = s.g.state().tick();
         CHECK(s.next_snapshot(now + snapshot_interval).baseline_tick == 0);  // the very tick being encoded
         CHECK(s.next_snapshot(now + 1000).baseline_tick == 0);               // the future

@@ -41,11 +41,12 @@ struct client_fixture {
     io_thread runner;
 
     explicit client_fixture(const agones_options& options)
-        : client(io, options, [this] { return healthy.load(); },
-                 [this](const std::string& line) {
-                     std::lock_guard lock(log_mutex);
-                     log.emplace_back(clock_type::now(), line);
-                 }),
+        : client(
+              io, options, [this] { return healthy.load(); },
+              [this](const std::string& line) {
+                  std::lock_guard lock(log_mutex);
+                  log.emplace_back(clock_type::now(), line);
+              }),
           runner(io) {}
 
     void start() {
@@ -69,7 +70,8 @@ struct client_fixture {
 
 auto count_of(const std::string& path, size_t n) {
     return [path, n](const std::vector<fake_sidecar::call>& calls) {
-        return static_cast<size_t>(std::count_if(calls.begin(), calls.end(), [&](auto& c) { return c.path == path; })) >= n;
+        return static_cast<size_t>(
+                   std::count_if(calls.begin(), calls.end(), [&](auto& c) { return c.path == path; })) >= n;
     };
 }
 

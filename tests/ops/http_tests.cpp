@@ -31,7 +31,9 @@ struct endpoint_fixture {
                                    ++scrapes;
                                    return std::string("arena_ticks_total 7\n");
                                },
-                               [this] { return healthy.load(); }}),
+                               [this] {
+                                   return healthy.load();
+                               }}),
           runner(io) {
         runner.run_on_io([this] { server.start(); });
     }
@@ -59,7 +61,10 @@ TEST_CASE("ops http: request heads parse, and malformed ones give the status to 
 
 TEST_CASE("ops http: routing: /metrics, /healthz by the health function, 404 and 405", "[ops][http]") {
     bool healthy = true;
-    const http_handlers h{[] { return std::string("m 1\n"); }, [&] { return healthy; }};
+    const http_handlers h{[] { return std::string("m 1\n"); },
+                          [&] {
+                              return healthy;
+                          }};
     CHECK(route({"GET", "/metrics"}, h).status == 200);
     CHECK(route({"GET", "/metrics"}, h).content_type == metrics_content_type);
     CHECK(route({"GET", "/healthz"}, h).status == 200);
@@ -115,7 +120,8 @@ TEST_CASE("ops http: a client that never finishes its request is cut off after t
     options.read_timeout_ns = 200'000'000;
     endpoint_fixture f(options);
     const auto start = std::chrono::steady_clock::now();
-    const std::string response = http_exchange(f.server.port(), "GET /metrics HTTP/1.1\r\n", std::chrono::milliseconds(3000));
+    const std::string response =
+        http_exchange(f.server.port(), "GET /metrics HTTP/1.1\r\n", std::chrono::milliseconds(3000));
     const auto waited = std::chrono::steady_clock::now() - start;
     CHECK(response.empty());
     CHECK(waited < std::chrono::milliseconds(1500));
@@ -125,12 +131,14 @@ TEST_CASE("ops http: a client that never finishes its request is cut off after t
 
 TEST_CASE("ops http: arena-healthcheck exits 0 on 200 and 1 on 503 or no server", "[ops][http]") {
     endpoint_fixture f;
-    const std::string probe = std::string(ARENA_BIN_DIR) + "/arena-healthcheck http://127.0.0.1:" +
-                              std::to_string(f.server.port()) + "/healthz --timeout 2 >/dev/null";
+    const std::string probe = std::string(ARENA_BIN_DIR) +
+                              "/arena-healthcheck http://127.0.0.1:" + std::to_string(f.server.port()) +
+                              "/healthz --timeout 2 >/dev/null";
     CHECK(std::system(probe.c_str()) == 0);
     f.healthy = false;
     CHECK(WEXITSTATUS(std::system(probe.c_str())) == 1);
-    const std::string nobody = std::string(ARENA_BIN_DIR) + "/arena-healthcheck http://127.0.0.1:" +
-                               std::to_string(arena::test::free_port()) + "/healthz --timeout 1 >/dev/null";
+    const std::string nobody = std::string(ARENA_BIN_DIR) +
+                               "/arena-healthcheck http://127.0.0.1:" + std::to_string(arena::test::free_port()) +
+                               "/healthz --timeout 1 >/dev/null";
     CHECK(WEXITSTATUS(std::system(nobody.c_str())) == 1);
 }

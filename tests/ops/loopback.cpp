@@ -140,9 +140,10 @@ void fake_sidecar::serve(int fd) {
     }
     const int status = status_;
     const std::string body = status == 200 ? "{}" : "{\"error\":\"test\"}";
-    const std::string response = "HTTP/1.1 " + std::to_string(status) + (status == 200 ? " OK" : " Error") +
-                                 "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
-                                 "\r\nConnection: close\r\n\r\n" + body;
+    const std::string response =
+        "HTTP/1.1 " + std::to_string(status) + (status == 200 ? " OK" : " Error") +
+        "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+        "\r\nConnection: close\r\n\r\n" + body;
     send(fd, response.data(), response.size(), MSG_NOSIGNAL);
 }
 

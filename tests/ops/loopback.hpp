@@ -65,7 +65,8 @@ private:
 // io_context, so that it stops first.
 class io_thread {
 public:
-    explicit io_thread(asio::io_context& io) : io_(io), guard_(asio::make_work_guard(io)), thread_([this] { io_.run(); }) {}
+    explicit io_thread(asio::io_context& io)
+        : io_(io), guard_(asio::make_work_guard(io)), thread_([this] { io_.run(); }) {}
     ~io_thread() {
         io_.stop();
         thread_.join();

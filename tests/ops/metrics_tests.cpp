@@ -3,6 +3,7 @@
 
 #include "common/run_command.hpp"
 
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -10,7 +11,6 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 #include "server/ops/metrics.hpp"
 #include "server/ops/process_stats.hpp"
@@ -137,8 +137,9 @@ TEST_CASE("ops metrics: a histogram renders cumulative buckets, +Inf, _sum and _
           "x_seconds_sum 0.506\nx_seconds_count 3\n");
 }
 
-TEST_CASE("ops metrics: every metric has HELP and TYPE, counters end in _total, names carry the arena_ or process_ prefix",
-          "[ops][metrics]") {
+TEST_CASE(
+    "ops metrics: every metric has HELP and TYPE, counters end in _total, names carry the arena_ or process_ prefix",
+    "[ops][metrics]") {
     const parsed_text p = parse(render_metrics(sample_metrics()));
     REQUIRE(p.types.size() > 20);
     for (const auto& [name, type] : p.types) {
@@ -198,7 +199,8 @@ TEST_CASE("ops metrics: process figures come from /proc/self", "[ops][metrics]")
         CHECK(p.types.count(name) == 1);
 }
 
-TEST_CASE("ops metrics: /proc/self/stat is read from the last parenthesis, whatever the command name", "[ops][metrics]") {
+TEST_CASE("ops metrics: /proc/self/stat is read from the last parenthesis, whatever the command name",
+          "[ops][metrics]") {
     proc_stat_fields f;
     const std::string stat = "42 (a) b (c) R 1 42 42 0 -1 4194560 100 0 0 0 7 3 0 0 20 0 1 0 12345 1000 10 rest";
     REQUIRE(parse_proc_self_stat(stat, f));

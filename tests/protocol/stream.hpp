@@ -11,10 +11,10 @@
 namespace arena::protocol::test {
 
 struct stream_outcome {
-  std::vector<std::vector<std::uint8_t>> frames;  // every complete frame, prefix included
-  std::string error;                              // the reader's error, if it failed
-  std::size_t consumed = 0;                       // bytes the reader took
-  std::size_t buffered = 0;                       // bytes held at the end (partial frame)
+    std::vector<std::vector<std::uint8_t>> frames;  // every complete frame, prefix included
+    std::string error;                              // the reader's error, if it failed
+    std::size_t consumed = 0;                       // bytes the reader took
+    std::size_t buffered = 0;                       // bytes held at the end (partial frame)
 };
 
 // Feeds stream in pieces of at most chunk bytes, collecting frames as they complete.

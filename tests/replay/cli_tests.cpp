@@ -3,10 +3,10 @@
 
 #include "common/run_command.hpp"
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 #include "replay_files.hpp"
@@ -25,7 +25,9 @@ enum class streams { out, err, both };
 
 // Runs arena-replay with `args` (already shell-quoted where needed).
 run_result run_replay(const std::string& args, streams which = streams::out) {
-    const char* redirect = which == streams::out ? " 2>/dev/null" : which == streams::err ? " 2>&1 >/dev/null" : " 2>&1";
+    const char* redirect = which == streams::out   ? " 2>/dev/null"
+                           : which == streams::err ? " 2>&1 >/dev/null"
+                                                   : " 2>&1";
     const auto done = arena::test::run_command(arena::test::program("arena-replay") + " " + args + redirect);
     return {done.exit_code, done.output};
 }
@@ -98,8 +100,8 @@ TEST_CASE("arena-replay exits 2 with one line naming the offset for a damaged fi
     CHECK(r.exit_code == 2);
     const auto lines = lines_of(r.out);
     REQUIRE(lines.size() == 1);
-    CHECK_THAT(lines[0], Catch::StartsWith("arena-replay: " + file.path() + ": byte offset " + std::to_string(offsets[10]) +
-                                           ": checksum mismatch"));
+    CHECK_THAT(lines[0], Catch::StartsWith("arena-replay: " + file.path() + ": byte offset " +
+                                           std::to_string(offsets[10]) + ": checksum mismatch"));
 }
 
 TEST_CASE("arena-replay exits 2 on usage errors and missing files", "[replay][cli]") {

@@ -122,8 +122,8 @@ TEST_CASE("a truncated recording is reported with the byte offset of the cut rec
     SECTION("inside a record's length prefix") {
         const uint64_t record = offsets[300];
         write_bytes(file.path(), {golden.begin(), golden.begin() + static_cast<long>(record + 2)});
-        CHECK_THAT(replay_error(file.path()),
-                   Catch::StartsWith(offset_text(file.path(), record) + "truncated: 2 bytes where a 4-byte record length"));
+        CHECK_THAT(replay_error(file.path()), Catch::StartsWith(offset_text(file.path(), record) +
+                                                                "truncated: 2 bytes where a 4-byte record length"));
     }
     SECTION("between records: the End record is missing") {
         const uint64_t record = offsets[400];
@@ -142,7 +142,8 @@ TEST_CASE("every truncation of a recording is reported, never replayed as comple
         const std::string error = replay_error(file.path());
         INFO("cut at " << length << ": " << error);
         const bool at_boundary = std::binary_search(offsets.begin(), offsets.end(), length);
-        REQUIRE_THAT(error, Catch::StartsWith(offset_text(file.path(), at_boundary ? length : record_holding(offsets, length))));
+        REQUIRE_THAT(
+            error, Catch::StartsWith(offset_text(file.path(), at_boundary ? length : record_holding(offsets, length))));
     }
 }
 
@@ -155,10 +156,9 @@ TEST_CASE("a recording from a newer format version says so", "[replay][corruptio
     encoder.append(h, bytes);
     encoder.append(end_marker{0, h.start_hash}, bytes);
     write_bytes(file.path(), bytes);
-    CHECK(replay_error(file.path()) ==
-          offset_text(file.path(), 0) + "recorded by a newer Arena (format version " +
-              std::to_string(current_format_version + 1) + ", this build reads up to " +
-              std::to_string(current_format_version) + ")");
+    CHECK(replay_error(file.path()) == offset_text(file.path(), 0) + "recorded by a newer Arena (format version " +
+                                           std::to_string(current_format_version + 1) + ", this build reads up to " +
+                                           std::to_string(current_format_version) + ")");
 }
 
 TEST_CASE("malformed recordings are each refused with the offset and the reason", "[replay][corruption]") {
@@ -223,7 +223,8 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
         encoder.append(end_marker{0, h.start_hash}, bytes);
         const uint64_t after = bytes.size();
         encoder.append(tick_record{0, {}, {}, {}}, bytes);
-        expected = offset_text(file.path(), after) + std::to_string(bytes.size() - after) + " bytes after the End record";
+        expected =
+            offset_text(file.path(), after) + std::to_string(bytes.size() - after) + " bytes after the End record";
     }
     SECTION("an unknown record type") {
         encoder.append(h, bytes);

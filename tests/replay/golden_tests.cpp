@@ -21,7 +21,9 @@ std::vector<std::pair<uint32_t, uint64_t>> replay_hashes(const std::string& path
     REQUIRE(opened.ok());
     std::vector<std::pair<uint32_t, uint64_t>> hashes;
     replay_options options;
-    options.on_tick = [&](uint32_t tick, uint64_t hash) { hashes.emplace_back(tick, hash); };
+    options.on_tick = [&](uint32_t tick, uint64_t hash) {
+        hashes.emplace_back(tick, hash);
+    };
     report = opened.value->run(options);
     return hashes;
 }

@@ -1,13 +1,15 @@
 #include "replay_files.hpp"
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <unistd.h>
 
 namespace arena::replay::testing {
 
-std::string golden_path() { return std::string(ARENA_TEST_DATA_DIR) + "/golden_asteroids.arpl"; }
+std::string golden_path() {
+    return std::string(ARENA_TEST_DATA_DIR) + "/golden_asteroids.arpl";
+}
 
 temp_file::temp_file(const std::string& name)
     : path_((std::filesystem::temp_directory_path() /
@@ -38,8 +40,8 @@ std::vector<uint64_t> record_offsets(const std::vector<uint8_t>& bytes) {
     uint64_t at = 0;
     while (at + 4 <= bytes.size()) {
         offsets.push_back(at);
-        const uint32_t length = uint32_t{bytes[at]} | (uint32_t{bytes[at + 1]} << 8) |
-                                (uint32_t{bytes[at + 2]} << 16) | (uint32_t{bytes[at + 3]} << 24);
+        const uint32_t length = uint32_t{bytes[at]} | (uint32_t{bytes[at + 1]} << 8) | (uint32_t{bytes[at + 2]} << 16) |
+                                (uint32_t{bytes[at + 3]} << 24);
         at += 4 + uint64_t{length} + 4;
     }
     return offsets;

@@ -60,8 +60,8 @@ protocol::result<session_result> record_scripted_session(const std::string& path
     const auto config = world::preset_by_name(script.preset);
     if (!config) return r::failure("unknown preset " + script.preset);
     world::world w(*config, script.world_seed);
-    auto opened = recorder::open(path, make_header(w, script.preset, script.world_seed, script.tick_rate,
-                                                   script.hash_interval));
+    auto opened =
+        recorder::open(path, make_header(w, script.preset, script.world_seed, script.tick_rate, script.hash_interval));
     if (!opened) return r::failure(opened.error);
     recorder& rec = opened.value;
 

@@ -20,12 +20,15 @@ using testing::temp_file;
 namespace {
 
 replay_report replay_file(const std::string& path, std::vector<uint64_t>* hashes = nullptr,
-                     std::optional<uint32_t> until = std::nullopt) {
+                          std::optional<uint32_t> until = std::nullopt) {
     auto opened = replayer::open(path);
     REQUIRE(opened.ok());
     replay_options options;
     options.until = until;
-    if (hashes) options.on_tick = [hashes](uint32_t, uint64_t hash) { hashes->push_back(hash); };
+    if (hashes)
+        options.on_tick = [hashes](uint32_t, uint64_t hash) {
+            hashes->push_back(hash);
+        };
     return opened.value->run(options);
 }
 
@@ -96,8 +99,7 @@ TEST_CASE("until stops at that tick after checking its hash", "[replay]") {
     CHECK_THAT(past_end.error, Catch::Contains("after the recording's end at tick 600"));
 }
 
-TEST_CASE("a recording the server never finished replays to its last tick and is reported as cut short",
-          "[replay]") {
+TEST_CASE("a recording the server never finished replays to its last tick and is reported as cut short", "[replay]") {
     temp_file file("unfinished");
     session_script script;
     script.finish = false;  // the recorder's destructor flushes what it holds
@@ -107,7 +109,8 @@ TEST_CASE("a recording the server never finished replays to its last tick and is
     CHECK(report.ticks_replayed == 600);
     CHECK_FALSE(report.mismatch.has_value());
     CHECK_FALSE(report.complete);
-    CHECK_THAT(report.error, Catch::Contains("byte offset " + std::to_string(size) + ": the file ends without an End record"));
+    CHECK_THAT(report.error,
+               Catch::Contains("byte offset " + std::to_string(size) + ": the file ends without an End record"));
 
     // What was replayed is still there for --until, the usual way to look at a crash.
     const replay_report until = replay_file(file.path(), nullptr, 600);

@@ -23,7 +23,8 @@ run_result run(const std::string& args) {
 std::string last_line(const std::string& text) {
     const auto end = text.find_last_not_of('\n');
     const auto start = text.rfind('\n', end);
-    return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+    return text.substr(start == std::string::npos ? 0 : start + 1,
+                       end - (start == std::string::npos ? 0 : start + 1) + 1);
 }
 
 }  // namespace
@@ -78,8 +79,8 @@ TEST_CASE("arena-sim draws the impact of the time step as an SVG", "[sim]") {
 }
 
 TEST_CASE("arena-sim refuses bad flags with a one-line error and exit code 2", "[sim]") {
-    for (const char* args : {"--frobnicate", "--force 1,x", "--integrator leapfrog", "--friction 0.5",
-                             "--preset tetris", "--dt -1"}) {
+    for (const char* args :
+         {"--frobnicate", "--force 1,x", "--integrator leapfrog", "--friction 0.5", "--preset tetris", "--dt -1"}) {
         INFO(args);
         const run_result r = run(args);
         CHECK(r.status == 2);

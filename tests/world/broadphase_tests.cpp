@@ -16,7 +16,8 @@ std::set<std::pair<uint32_t, uint32_t>> brute_force_overlaps(std::span<const bod
     for (uint32_t i = 0; i < bodies.size(); ++i)
         for (uint32_t j = i + 1; j < bodies.size(); ++j) {
             const real reach = bodies[i].radius + bodies[j].radius;
-            if (displacement(bodies[i].position, bodies[j].position, c).squaredNorm() < reach * reach) out.insert({i, j});
+            if (displacement(bodies[i].position, bodies[j].position, c).squaredNorm() < reach * reach)
+                out.insert({i, j});
         }
     return out;
 }
@@ -69,7 +70,9 @@ std::vector<std::pair<uint32_t, uint32_t>> pairs_in_documented_order(std::span<c
     }
     std::stable_sort(order.begin(), order.end(), [&](uint32_t l, uint32_t r) { return cell[l] < cell[r]; });
     std::vector<std::pair<uint32_t, uint32_t>> out;
-    auto meet = [&](uint32_t i, uint32_t j) { out.emplace_back(std::min(i, j), std::max(i, j)); };
+    auto meet = [&](uint32_t i, uint32_t j) {
+        out.emplace_back(std::min(i, j), std::max(i, j));
+    };
     for (size_t k = 0; k < order.size(); ++k) {
         const uint32_t i = order[k];
         for (size_t l = k + 1; l < order.size() && cell[order[l]] == cell[i]; ++l) meet(i, order[l]);

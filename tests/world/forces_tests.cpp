@@ -116,7 +116,8 @@ TEST_CASE("accumulators are cleared at the end of every step", "[world][forces]"
     CHECK(w.find(id)->velocity.x() == 10.0f);  // no force in the second step
 }
 
-TEST_CASE("a player's thrust pushes along its facing and button 0 fires an impulse with a cooldown", "[world][forces]") {
+TEST_CASE("a player's thrust pushes along its facing and button 0 fires an impulse with a cooldown",
+          "[world][forces]") {
     world_config c = quiet_config(1.0f / 60);
     c.control.thrust_force = 60;
     c.control.impulse = 10;

@@ -11,36 +11,35 @@ namespace arena::protocol::delta::test {
 
 // splitmix64 (DETERMINISM.md rule 4).
 class rng {
- public:
-  explicit rng(std::uint64_t seed) : s_(seed) {}
-  std::uint64_t next() noexcept {
-    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
-  double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
-  std::uint64_t below(std::uint64_t n) noexcept { return next() % n; }  // bias irrelevant here
-  bool chance(double p) noexcept { return uniform() < p; }
+public:
+    explicit rng(std::uint64_t seed) : s_(seed) {}
+    std::uint64_t next() noexcept {
+        std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    double uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+    double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
+    std::uint64_t below(std::uint64_t n) noexcept { return next() % n; }  // bias irrelevant here
+    bool chance(double p) noexcept { return uniform() < p; }
 
- private:
-  std::uint64_t s_;
+private:
+    std::uint64_t s_;
 };
 
 enum class motion { rest, drift, player };
 
 struct sim_body {
-  std::uint32_t id = 0;
-  std::uint32_t owner = 0;
-  motion kind = motion::drift;
-  float x = 0, y = 0, vx = 0, vy = 0, angle = 0, w = 0;
-  float thrust = 0, turn = 0;  // players only, re-chosen every half second
+    std::uint32_t id = 0;
+    std::uint32_t owner = 0;
+    motion kind = motion::drift;
+    float x = 0, y = 0, vx = 0, vy = 0, angle = 0, w = 0;
+    float thrust = 0, turn = 0;  // players only, re-chosen every half second
 };
 
 // A square world of the given size (m) with `count` bodies of one kind, ids 1..count.
-std::vector<sim_body> make_bodies(rng& r, motion kind, std::uint32_t count, float size,
-                                  std::uint32_t first_id = 1);
+std::vector<sim_body> make_bodies(rng& r, motion kind, std::uint32_t count, float size, std::uint32_t first_id = 1);
 
 // One world tick of dt seconds for every body (asteroids preset's ship: 10 kg, 200 N of
 // thrust, 60 N·m of torque, drag ACd 0.5, angular damping 2/s; rocks keep v and ω).
