@@ -13,7 +13,7 @@ CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 endif
 
 # Debian packages the build and the tests need (see ../shared/DEPS.md).
-PACKAGES := build-essential cmake ninja-build pkg-config libasio-dev libflatbuffers-dev \
+PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
   libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus
 

@@ -1,11 +1,11 @@
 #include "client_sim/bot.hpp"
 
 #include <algorithm>
-#include <asio/co_spawn.hpp>
-#include <asio/detached.hpp>
-#include <asio/redirect_error.hpp>
-#include <asio/use_awaitable.hpp>
-#include <asio/write.hpp>
+#include <boost/asio/co_spawn.hpp>
+#include <boost/asio/detached.hpp>
+#include <boost/asio/redirect_error.hpp>
+#include <boost/asio/use_awaitable.hpp>
+#include <boost/asio/write.hpp>
 #include <limits>
 
 #include "client_sim/fleet.hpp"
@@ -18,8 +18,8 @@ namespace arena::bots {
 
 namespace {
 
-using asio::redirect_error;
-using asio::use_awaitable;
+using boost::asio::redirect_error;
+using boost::asio::use_awaitable;
 
 // Bytes per read: several snapshots of a 64-player world at once; 16 MB for 1000 bots.
 constexpr std::size_t read_buffer_bytes = 16 * 1024;
@@ -52,17 +52,17 @@ bot::bot(fleet& owner, std::uint32_t index, behavior_kind kind, misbehavior mode
     outcome_.misbehaving = mode != misbehavior::none;
 }
 
-asio::awaitable<void> bot::run() {
+boost::asio::awaitable<void> bot::run() {
     try {
         launched_at_ = clock::now();
         phase_ = phase::connecting;
-        asio::error_code ec;
+        boost::system::error_code ec;
         if (mode_ == misbehavior::slow_reader) {
             // A small receive window (set before connecting, when TCP negotiates window
             // scaling), so that only the server's own send buffer stands between the fault
             // and the server noticing it, not megabytes of our autotuned buffer as well.
             socket_.open(fleet_.endpoint().protocol(), ec);
-            socket_.set_option(asio::socket_base::receive_buffer_size(slow_reader_buffer_bytes), ec);
+            socket_.set_option(boost::asio::socket_base::receive_buffer_size(slow_reader_buffer_bytes), ec);
         }
         co_await socket_.async_connect(fleet_.endpoint(), redirect_error(use_awaitable, ec));
         if (phase_ == phase::ended) co_return;  // aborted while connecting
@@ -71,12 +71,12 @@ asio::awaitable<void> bot::run() {
             co_return;
         }
         // Inputs are tiny and due now: never let Nagle hold one back for the next.
-        socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+        socket_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
         phase_ = phase::joining;
         const std::string name = fleet_.opts().name_prefix + "-" + std::to_string(index_);
         queue(protocol::encode_hello(protocol::protocol_version, name, token_for(fleet_.opts(), name),
                                      !fleet_.opts().full_snapshots));
-        asio::co_spawn(socket_.get_executor(), writer(), asio::detached);
+        boost::asio::co_spawn(socket_.get_executor(), writer(), boost::asio::detached);
         co_await reader();
     } catch (const std::exception& e) {
         // Our bug, not the server's; still ends only this bot.
@@ -84,13 +84,13 @@ asio::awaitable<void> bot::run() {
     }
 }
 
-asio::awaitable<void> bot::reader() {
-    asio::error_code ec;
+boost::asio::awaitable<void> bot::reader() {
+    boost::system::error_code ec;
     while (phase_ != phase::ended) {
         const std::size_t n =
-            co_await socket_.async_read_some(asio::buffer(read_buffer_), redirect_error(use_awaitable, ec));
+            co_await socket_.async_read_some(boost::asio::buffer(read_buffer_), redirect_error(use_awaitable, ec));
         if (phase_ == phase::ended) co_return;
-        if (ec == asio::error::eof) {
+        if (ec == boost::asio::error::eof) {
             end(end_kind::by_server, "server closed the connection without Reject or Bye");
             co_return;
         }
@@ -117,21 +117,21 @@ asio::awaitable<void> bot::reader() {
     }
 }
 
-asio::awaitable<void> bot::writer() {
-    asio::error_code ec;
+boost::asio::awaitable<void> bot::writer() {
+    boost::system::error_code ec;
     while (phase_ != phase::ended) {
         if (pending_.empty()) {
             if (close_after_flush_) {
                 end(end_kind::orderly, close_reason_);
                 co_return;
             }
-            wake_.expires_at(asio::steady_timer::time_point::max());
+            wake_.expires_at(boost::asio::steady_timer::time_point::max());
             co_await wake_.async_wait(redirect_error(use_awaitable, ec));
             continue;  // woken (cancelled) by queue() or end()
         }
         // Everything queued goes out in one write; the two buffers keep their capacity.
         std::swap(pending_, sending_);
-        co_await asio::async_write(socket_, asio::buffer(sending_), redirect_error(use_awaitable, ec));
+        co_await boost::asio::async_write(socket_, boost::asio::buffer(sending_), redirect_error(use_awaitable, ec));
         if (phase_ == phase::ended) co_return;
         if (ec) {
             end(end_kind::socket_error, "write: " + ec.message());
@@ -373,8 +373,8 @@ void bot::end(end_kind kind, const std::string& reason) {
     outcome_.ended_early = !fleet_.stopping();
     if (kind == end_kind::protocol_error) outcome_.protocol_error = true;
     if (outcome_.ended_early) ++fleet_.metrics().disconnects[reason];
-    asio::error_code ignored;
-    socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+    boost::system::error_code ignored;
+    socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ignored);
     socket_.close(ignored);
     wake_.cancel();
     fleet_.on_bot_ended(was_playing);

@@ -4,9 +4,9 @@
 // buffer is empty (the shape of Asio's cpp20 chat_server example). Nothing here is timed
 // per bot: the fleet's one shared ticker calls on_tick() for every bot once per server tick,
 // so 1000 bots cost one timer, not 1000.
-#include <asio/awaitable.hpp>
-#include <asio/ip/tcp.hpp>
-#include <asio/steady_timer.hpp>
+#include <boost/asio/awaitable.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -36,7 +36,7 @@ public:
 
     // Connects, joins and plays until the session ends. Never throws: whatever goes wrong
     // ends this bot's session only, with a reason.
-    asio::awaitable<void> run();
+    boost::asio::awaitable<void> run();
 
     // One server tick passed: this tick's input, and a Ping once a second.
     void on_tick(std::uint64_t tick);
@@ -56,8 +56,8 @@ private:
     enum class phase : std::uint8_t { idle, connecting, joining, playing, ended };
     enum class end_kind : std::uint8_t { orderly, by_server, protocol_error, socket_error };
 
-    asio::awaitable<void> reader();
-    asio::awaitable<void> writer();
+    boost::asio::awaitable<void> reader();
+    boost::asio::awaitable<void> writer();
 
     void handle_frame(std::span<const std::uint8_t> frame);
     void on_welcome(const protocol::Message& message);
@@ -81,8 +81,8 @@ private:
     phase phase_ = phase::idle;
     bot_outcome outcome_;
 
-    asio::ip::tcp::socket socket_;
-    asio::steady_timer wake_;  // the writer sleeps on it; queue() cancels it
+    boost::asio::ip::tcp::socket socket_;
+    boost::asio::steady_timer wake_;  // the writer sleeps on it; queue() cancels it
     protocol::frame_reader frames_;
     std::vector<std::uint8_t> read_buffer_;
     std::vector<std::uint8_t> pending_;  // frames waiting for the writer

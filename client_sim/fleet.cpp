@@ -1,10 +1,10 @@
 #include "client_sim/fleet.hpp"
 
 #include <algorithm>
-#include <asio/co_spawn.hpp>
-#include <asio/detached.hpp>
-#include <asio/redirect_error.hpp>
-#include <asio/use_awaitable.hpp>
+#include <boost/asio/co_spawn.hpp>
+#include <boost/asio/detached.hpp>
+#include <boost/asio/redirect_error.hpp>
+#include <boost/asio/use_awaitable.hpp>
 #include <csignal>
 #include <cstdio>
 #include <variant>
@@ -15,8 +15,8 @@ namespace arena::bots {
 
 namespace {
 
-using asio::redirect_error;
-using asio::use_awaitable;
+using boost::asio::redirect_error;
+using boost::asio::use_awaitable;
 using namespace std::chrono_literals;
 
 // A tick more than this late is dropped, not sent in a burst: a burst of inputs is what the
@@ -27,7 +27,7 @@ constexpr auto goodbye_grace = 3s;
 
 }  // namespace
 
-fleet::fleet(asio::io_context& io, options opts)
+fleet::fleet(boost::asio::io_context& io, options opts)
     : io_(io),
       opts_(std::move(opts)),
       tick_timer_(io),
@@ -77,7 +77,7 @@ void fleet::on_joined(const protocol::welcome_info& welcome) {
     ++playing_;
     if (tick_rate_ != 0 || stopping_) return;
     tick_rate_ = welcome.tick_rate;
-    asio::co_spawn(io_, ticker(), asio::detached);
+    boost::asio::co_spawn(io_, ticker(), boost::asio::detached);
 }
 
 void fleet::on_bot_ended(bool was_playing) {
@@ -85,11 +85,11 @@ void fleet::on_bot_ended(bool was_playing) {
     if (was_playing) --playing_;
 }
 
-asio::awaitable<void> fleet::run() {
+boost::asio::awaitable<void> fleet::run() {
     start_ = clock::now();
     end_ = start_ + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(opts_.duration));
-    asio::ip::tcp::resolver resolver(io_);
-    asio::error_code ec;
+    boost::asio::ip::tcp::resolver resolver(io_);
+    boost::system::error_code ec;
     const auto results =
         co_await resolver.async_resolve(opts_.host, std::to_string(opts_.port), redirect_error(use_awaitable, ec));
     if (ec || results.empty()) {
@@ -100,14 +100,14 @@ asio::awaitable<void> fleet::run() {
     }
     endpoint_ = results.begin()->endpoint();
     watch_signals();
-    asio::co_spawn(io_, launch(), asio::detached);
+    boost::asio::co_spawn(io_, launch(), boost::asio::detached);
     co_await report_loop();
     co_await wind_down();
     signals_.cancel();
 }
 
 void fleet::watch_signals() {
-    signals_.async_wait([this](const asio::error_code& ec, int) {
+    signals_.async_wait([this](const boost::system::error_code& ec, int) {
         if (ec) return;
         if (stopping_) {
             // A second signal: stop waiting for the goodbyes.
@@ -120,9 +120,9 @@ void fleet::watch_signals() {
     });
 }
 
-asio::awaitable<void> fleet::launch() {
+boost::asio::awaitable<void> fleet::launch() {
     const auto start = clock::now();
-    asio::error_code ec;
+    boost::system::error_code ec;
     std::size_t next = 0;
     while (next < bots_.size() && !stopping_) {
         // Every bot due by now, not one per wake-up: under load one turn of the event loop
@@ -132,7 +132,7 @@ asio::awaitable<void> fleet::launch() {
                                     ? std::min(bots_.size(), static_cast<std::size_t>(elapsed * opts_.connect_rate) + 1)
                                     : bots_.size();
         for (; next < due; ++next) {
-            asio::co_spawn(io_, bots_[next]->run(), asio::detached);
+            boost::asio::co_spawn(io_, bots_[next]->run(), boost::asio::detached);
             ++launched_;
         }
         if (next == bots_.size()) break;
@@ -143,7 +143,7 @@ asio::awaitable<void> fleet::launch() {
     all_launched_ = true;
 }
 
-asio::awaitable<void> fleet::ticker() {
+boost::asio::awaitable<void> fleet::ticker() {
     // Deadlines from the tick count, not from the previous wake-up, so that timer latency
     // never accumulates into drift against the server's clock.
     const auto origin = clock::now();
@@ -151,7 +151,7 @@ asio::awaitable<void> fleet::ticker() {
         return origin + std::chrono::nanoseconds(tick * 1'000'000'000ULL / tick_rate_);
     };
     std::uint64_t tick = 0;
-    asio::error_code ec;
+    boost::system::error_code ec;
     while (!stopping_) {
         ++tick;
         tick_timer_.expires_at(due(tick));
@@ -189,9 +189,9 @@ void fleet::roll_interval(clock::time_point now, double interval_s) {
     metrics_.interval_prediction_error_m.clear();
 }
 
-asio::awaitable<void> fleet::report_loop() {
+boost::asio::awaitable<void> fleet::report_loop() {
     auto last = start_;
-    asio::error_code ec;
+    boost::system::error_code ec;
     for (int second = 1; !stopping_; ++second) {
         report_timer_.expires_at(std::min(start_ + std::chrono::seconds(second), end_));
         co_await report_timer_.async_wait(redirect_error(use_awaitable, ec));
@@ -213,9 +213,9 @@ void fleet::stop() {
     for (auto& b : bots_) b->finish();
 }
 
-asio::awaitable<void> fleet::wind_down() {
+boost::asio::awaitable<void> fleet::wind_down() {
     const auto deadline = clock::now() + goodbye_grace;
-    asio::error_code ec;
+    boost::system::error_code ec;
     while (ended_ < launched_ && clock::now() < deadline) {
         report_timer_.expires_after(20ms);
         co_await report_timer_.async_wait(redirect_error(use_awaitable, ec));

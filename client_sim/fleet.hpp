@@ -2,11 +2,11 @@
 // All the bots of one run, on one io_context and one thread: launches them at the connect
 // rate, drives every bot's input from one shared timer at the server's tick rate, prints a
 // progress line each second and ends the run after --duration (or on SIGINT/SIGTERM).
-#include <asio/awaitable.hpp>
-#include <asio/io_context.hpp>
-#include <asio/ip/tcp.hpp>
-#include <asio/signal_set.hpp>
-#include <asio/steady_timer.hpp>
+#include <boost/asio/awaitable.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -27,23 +27,23 @@ class fleet {
 public:
     using clock = std::chrono::steady_clock;
 
-    fleet(asio::io_context& io, options opts);
+    fleet(boost::asio::io_context& io, options opts);
     fleet(const fleet&) = delete;
     fleet& operator=(const fleet&) = delete;
     ~fleet();
 
     // The whole run; completes once every bot's session has ended.
-    asio::awaitable<void> run();
+    boost::asio::awaitable<void> run();
     // After run(): the figures and the exit code.
     final_report report();
 
     // --- for the bots --------------------------------------------------------------------
-    asio::io_context& io() { return io_; }
+    boost::asio::io_context& io() { return io_; }
     const options& opts() const { return opts_; }
     fleet_metrics& metrics() { return metrics_; }
     // One builder for every bot's Inputs and Pings: one thread, so sharing is safe.
     flatbuffers::FlatBufferBuilder& encoder() { return encoder_; }
-    const asio::ip::tcp::endpoint& endpoint() const { return endpoint_; }
+    const boost::asio::ip::tcp::endpoint& endpoint() const { return endpoint_; }
     bool stopping() const { return stopping_; }
     // Nanoseconds since the run started: the Pings' client_time.
     std::uint64_t now_ns() const;
@@ -57,25 +57,25 @@ public:
     void on_bot_ended(bool was_playing);
 
 private:
-    asio::awaitable<void> launch();
-    asio::awaitable<void> ticker();
+    boost::asio::awaitable<void> launch();
+    boost::asio::awaitable<void> ticker();
     // A progress line a second until the run's end, then the goodbyes.
-    asio::awaitable<void> report_loop();
-    asio::awaitable<void> wind_down();
+    boost::asio::awaitable<void> report_loop();
+    boost::asio::awaitable<void> wind_down();
     void roll_interval(clock::time_point now, double interval_s);
     void watch_signals();
     void stop();
 
-    asio::io_context& io_;
+    boost::asio::io_context& io_;
     options opts_;
     fleet_metrics metrics_;
     flatbuffers::FlatBufferBuilder encoder_{256};
     std::vector<std::unique_ptr<bot>> bots_;
-    asio::ip::tcp::endpoint endpoint_;
-    asio::steady_timer tick_timer_;
-    asio::steady_timer launch_timer_;
-    asio::steady_timer report_timer_;
-    asio::signal_set signals_;
+    boost::asio::ip::tcp::endpoint endpoint_;
+    boost::asio::steady_timer tick_timer_;
+    boost::asio::steady_timer launch_timer_;
+    boost::asio::steady_timer report_timer_;
+    boost::asio::signal_set signals_;
 
     clock::time_point start_{};
     clock::time_point end_{};

@@ -1,7 +1,7 @@
 // arena-bots: simulated players for an Arena server. Wiring only: options, one io_context on
 // this thread, the fleet, the report. See README.md beside this file.
-#include <asio/co_spawn.hpp>
-#include <asio/io_context.hpp>
+#include <boost/asio/co_spawn.hpp>
+#include <boost/asio/io_context.hpp>
 #include <cstdio>
 #include <exception>
 #include <fstream>
@@ -16,10 +16,10 @@ int main(int argc, char** argv) {
     if (const int code = parse_options(argc, argv, opts); code >= 0) return code;
 
     // One thread runs everything: a concurrency hint of 1 lets Asio skip its locking.
-    asio::io_context io(1);
+    boost::asio::io_context io(1);
     fleet bots(io, opts);
     bool crashed = false;
-    asio::co_spawn(io, bots.run(), [&crashed](std::exception_ptr e) {
+    boost::asio::co_spawn(io, bots.run(), [&crashed](std::exception_ptr e) {
         if (!e) return;
         crashed = true;
         try {

@@ -1,6 +1,6 @@
 // arena-server: the authoritative game server. Wiring only: flags, the world config, the
 // server, signals.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdio>
 #include <cstdlib>
 #include <variant>
@@ -115,10 +115,10 @@ int main(int argc, char** argv) {
     }
 
     try {
-        asio::io_context io(1);
+        boost::asio::io_context io(1);
         net::server server(io, options, world_config);
-        asio::signal_set signals(io, SIGINT, SIGTERM);
-        signals.async_wait([&](const asio::error_code& ec, int signo) {
+        boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+        signals.async_wait([&](const boost::system::error_code& ec, int signo) {
             if (!ec) server.shutdown(signo == SIGINT ? "server interrupted (SIGINT)" : "server terminated (SIGTERM)");
         });
         // --record: every tick goes to the file as the session runs; finished at shutdown.

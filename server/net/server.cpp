@@ -12,8 +12,8 @@
 
 namespace arena::net {
 
-using asio::use_awaitable;
-using asio::ip::tcp;
+using boost::asio::use_awaitable;
+using boost::asio::ip::tcp;
 
 namespace {
 
@@ -40,7 +40,7 @@ nlohmann::json process_figures() {
 
 }  // namespace
 
-server::server(asio::io_context& io, const server_options& options, const world::world_config& world_config)
+server::server(boost::asio::io_context& io, const server_options& options, const world::world_config& world_config)
     : io_(io),
       options_(options),
       game_(options.game, world_config),
@@ -56,33 +56,33 @@ int64_t server::now_ns() const {
 }
 
 void server::start() {
-    const tcp::endpoint endpoint(asio::ip::make_address(options_.bind), options_.port);
+    const tcp::endpoint endpoint(boost::asio::ip::make_address(options_.bind), options_.port);
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(tcp::acceptor::reuse_address(true));
     acceptor_.bind(endpoint);
-    acceptor_.listen(asio::socket_base::max_listen_connections);
+    acceptor_.listen(boost::asio::socket_base::max_listen_connections);
     port_ = acceptor_.local_endpoint().port();
     std::printf("listening on %s:%u\n", options_.bind.c_str(), port_);
     std::fflush(stdout);
     log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.game.tick_rate,
              options_.game.snapshot_rate, options_.game.max_players, game_.state().bodies().size());
     started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
-    asio::co_spawn(io_, accept_loop(), asio::detached);
-    asio::co_spawn(io_, tick_loop(), asio::detached);
+    boost::asio::co_spawn(io_, accept_loop(), boost::asio::detached);
+    boost::asio::co_spawn(io_, tick_loop(), boost::asio::detached);
     if (options_.duration_s > 0) {
         stop_timer_.expires_after(std::chrono::nanoseconds(static_cast<int64_t>(options_.duration_s * 1e9)));
-        stop_timer_.async_wait([this](const asio::error_code& ec) {
+        stop_timer_.async_wait([this](const boost::system::error_code& ec) {
             if (!ec) shutdown("match over (--duration reached)");
         });
     }
 }
 
-asio::awaitable<void> server::accept_loop() {
+boost::asio::awaitable<void> server::accept_loop() {
     while (!stopping_) {
-        asio::error_code ec;
-        tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(use_awaitable, ec));
+        boost::system::error_code ec;
+        tcp::socket socket = co_await acceptor_.async_accept(boost::asio::redirect_error(use_awaitable, ec));
         if (ec) {
-            if (stopping_ || ec == asio::error::operation_aborted) co_return;
+            if (stopping_ || ec == boost::asio::error::operation_aborted) co_return;
             log_line("accept failed: %s", ec.message().c_str());
             continue;
         }
@@ -98,13 +98,13 @@ asio::awaitable<void> server::accept_loop() {
     }
 }
 
-asio::awaitable<void> server::tick_loop() {
+boost::asio::awaitable<void> server::tick_loop() {
     clock_.start(now_ns());
     while (!stopping_) {
         const int64_t due = clock_.next_due_ns();
-        tick_timer_.expires_at(asio::steady_timer::time_point(std::chrono::nanoseconds(due)));
-        asio::error_code ec;
-        co_await tick_timer_.async_wait(asio::redirect_error(use_awaitable, ec));
+        tick_timer_.expires_at(boost::asio::steady_timer::time_point(std::chrono::nanoseconds(due)));
+        boost::system::error_code ec;
+        co_await tick_timer_.async_wait(boost::asio::redirect_error(use_awaitable, ec));
         if (stopping_) break;
         run_due_ticks();
     }
@@ -236,7 +236,7 @@ void server::shutdown(const std::string& reason) {
     if (stopping_) return;
     stopping_ = true;
     log_line("shutting down: %s", reason.c_str());
-    asio::error_code ec;
+    boost::system::error_code ec;
     acceptor_.close(ec);
     tick_timer_.cancel();
     stop_timer_.cancel();
@@ -250,7 +250,7 @@ void server::shutdown(const std::string& reason) {
     }
     // Sessions that cannot flush are closed by their own linger timers; this bounds the rest.
     stop_timer_.expires_after(std::chrono::nanoseconds(options_.close_grace_ns + 100'000'000));
-    stop_timer_.async_wait([this](const asio::error_code&) { finish(); });
+    stop_timer_.async_wait([this](const boost::system::error_code&) { finish(); });
 }
 
 void server::finish() {

@@ -2,7 +2,7 @@
 // The authoritative server: accepts TCP clients, runs the game at a fixed tick on one
 // io_context thread, fans snapshots out, and shuts down cleanly on a signal or at the end of
 // --duration.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -50,7 +50,7 @@ struct traffic {
 
 class server {
 public:
-    server(asio::io_context& io, const server_options& options, const world::world_config& world_config);
+    server(boost::asio::io_context& io, const server_options& options, const world::world_config& world_config);
 
     // Binds, listens, prints "listening on HOST:PORT", and starts accepting and ticking.
     void start();
@@ -86,24 +86,24 @@ public:
     void write_stats_json(const std::string& path) const;
 
 private:
-    asio::awaitable<void> accept_loop();
-    asio::awaitable<void> tick_loop();
+    boost::asio::awaitable<void> accept_loop();
+    boost::asio::awaitable<void> tick_loop();
     void run_due_ticks();
     void check_stalled_sessions(int64_t now);
     void log_stats(int64_t now);
     void finish();
     size_t pending_handshakes() const;
 
-    asio::io_context& io_;
+    boost::asio::io_context& io_;
     server_options options_;
     game game_;
-    asio::ip::tcp::acceptor acceptor_;
+    boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
     uint64_t next_session_id_ = 1;
     tick_clock clock_;
-    asio::steady_timer tick_timer_;
-    asio::steady_timer stop_timer_;
+    boost::asio::steady_timer tick_timer_;
+    boost::asio::steady_timer stop_timer_;
     bool stopping_ = false;
     bool finished_ = false;
     int64_t started_ns_ = 0;

@@ -7,14 +7,14 @@
 
 namespace arena::net {
 
-using asio::use_awaitable;
+using boost::asio::use_awaitable;
 using protocol::Payload;
 using protocol::RejectCode;
 
 namespace {
 
-std::string describe(const asio::ip::tcp::socket& socket) {
-    asio::error_code ec;
+std::string describe(const boost::asio::ip::tcp::socket& socket) {
+    boost::system::error_code ec;
     const auto endpoint = socket.remote_endpoint(ec);
     if (ec) return "unknown-peer";
     return endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
@@ -22,7 +22,7 @@ std::string describe(const asio::ip::tcp::socket& socket) {
 
 }  // namespace
 
-session::session(asio::ip::tcp::socket socket, server& owner, uint64_t id)
+session::session(boost::asio::ip::tcp::socket socket, server& owner, uint64_t id)
     : socket_(std::move(socket)),
       owner_(owner),
       id_(id),
@@ -32,33 +32,33 @@ session::session(asio::ip::tcp::socket socket, server& owner, uint64_t id)
       linger_(socket_.get_executor()) {}
 
 void session::start() {
-    asio::error_code ec;
-    socket_.set_option(asio::ip::tcp::no_delay(true), ec);
-    socket_.set_option(asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
+    boost::system::error_code ec;
+    socket_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
+    socket_.set_option(boost::asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
     socket_.non_blocking(true, ec);  // the reader's read_some after async_wait must never block
     auto self = shared_from_this();
     // Each coroutine's completion handler holds the session alive until the coroutine ends.
-    asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
-    asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
+    boost::asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
+    boost::asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
     handshake_.expires_after(std::chrono::nanoseconds(owner_.options().handshake_timeout_ns));
-    handshake_.async_wait([self](const asio::error_code& e) {
+    handshake_.async_wait([self](const boost::system::error_code& e) {
         if (!e && self->player_id_ == 0 && !self->closing_)
             self->reject(RejectCode::timeout, "no Hello within the handshake timeout");
     });
 }
 
-asio::awaitable<void> session::reader() {
+boost::asio::awaitable<void> session::reader() {
     try {
         while (!closing_) {
             // Wait until the socket is readable, then take whatever it holds, up to the buffer:
             // one recv per input in the common case. Reading the length prefix and then the body
             // took two, and a read attempted before waiting (async_read_some's first try) most
             // often finds nothing and costs a third.
-            co_await socket_.async_wait(asio::ip::tcp::socket::wait_read, use_awaitable);
-            asio::error_code ec;
-            const size_t n = socket_.read_some(asio::buffer(input_), ec);
-            if (ec == asio::error::would_block || ec == asio::error::try_again) continue;
-            if (ec) throw std::system_error(ec);
+            co_await socket_.async_wait(boost::asio::ip::tcp::socket::wait_read, use_awaitable);
+            boost::system::error_code ec;
+            const size_t n = socket_.read_some(boost::asio::buffer(input_), ec);
+            if (ec == boost::asio::error::would_block || ec == boost::asio::error::try_again) continue;
+            if (ec) throw boost::system::system_error(ec);
             owner_.count_in(n);
             std::span<const uint8_t> data(input_.data(), n);
             while (!closing_) {
@@ -80,9 +80,9 @@ asio::awaitable<void> session::reader() {
                 if (!go_on) co_return;
             }
         }
-    } catch (const std::system_error& e) {
+    } catch (const boost::system::system_error& e) {
         if (!closing_) {
-            const bool eof = e.code() == asio::error::eof;
+            const bool eof = e.code() == boost::asio::error::eof;
             const bool mid_frame = reader_.buffered() > 0;
             const std::string why = eof ? (mid_frame ? "connection closed mid-frame" : "connection closed")
                                         : "socket error: " + e.code().message();
@@ -155,35 +155,35 @@ bool session::dispatch(const protocol::Message& message) {
     }
 }
 
-asio::awaitable<void> session::writer() {
+boost::asio::awaitable<void> session::writer() {
     try {
         while (!closed_) {
             if (!control_.empty()) {
                 protocol::frame_bytes frame = std::move(control_.front());
                 control_.pop_front();
                 if (!frame.empty()) {
-                    co_await asio::async_write(socket_, asio::buffer(frame), use_awaitable);
+                    co_await boost::asio::async_write(socket_, boost::asio::buffer(frame), use_awaitable);
                     owner_.count_out(frame.size());
                 }
             } else if (snapshot_pending_) {
                 std::swap(snapshot_next_, snapshot_writing_);
                 snapshot_pending_ = false;
-                co_await asio::async_write(socket_, asio::buffer(snapshot_writing_), use_awaitable);
+                co_await boost::asio::async_write(socket_, boost::asio::buffer(snapshot_writing_), use_awaitable);
                 owner_.count_out(snapshot_writing_.size());
             } else if (closing_) {
                 close_now();
                 co_return;
             } else {
                 waiting_since_ns_ = 0;
-                wake_.expires_at(asio::steady_timer::time_point::max());
-                asio::error_code ec;
-                co_await wake_.async_wait(asio::redirect_error(use_awaitable, ec));
+                wake_.expires_at(boost::asio::steady_timer::time_point::max());
+                boost::system::error_code ec;
+                co_await wake_.async_wait(boost::asio::redirect_error(use_awaitable, ec));
                 continue;
             }
             // A write completed: that is progress.
             waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.now_ns();
         }
-    } catch (const std::system_error& e) {
+    } catch (const boost::system::system_error& e) {
         if (!closing_) owner_.on_closed(*this, "write failed: " + e.code().message(), true);
         close_now();
     }
@@ -242,7 +242,7 @@ void session::close_after(protocol::frame_bytes last_frame) {
     wake_.cancel();
     auto self = shared_from_this();
     linger_.expires_after(std::chrono::nanoseconds(owner_.options().close_grace_ns));
-    linger_.async_wait([self](const asio::error_code& e) {
+    linger_.async_wait([self](const boost::system::error_code& e) {
         if (!e) self->close_now();
     });
 }
@@ -251,8 +251,8 @@ void session::close_now() {
     if (closed_) return;
     closed_ = true;
     closing_ = true;
-    asio::error_code ec;
-    socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
+    boost::system::error_code ec;
+    socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ec);
     socket_.close(ec);
     wake_.cancel();
     handshake_.cancel();

@@ -4,7 +4,7 @@
 // messages queue up to a limit, and a snapshot waiting to be sent is replaced by a newer one,
 // so a client that does not read costs at most one snapshot and a few small frames.
 #include <array>
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -19,7 +19,7 @@ class server;
 
 class session : public participant, public std::enable_shared_from_this<session> {
 public:
-    session(asio::ip::tcp::socket socket, server& owner, uint64_t id);
+    session(boost::asio::ip::tcp::socket socket, server& owner, uint64_t id);
 
     void start();
     void send(protocol::frame_bytes frame) override;
@@ -37,15 +37,15 @@ public:
     const std::string& peer() const { return peer_; }
 
 private:
-    asio::awaitable<void> reader();
-    asio::awaitable<void> writer();
+    boost::asio::awaitable<void> reader();
+    boost::asio::awaitable<void> writer();
     // Handles one verified frame; false ends the connection.
     bool dispatch(const protocol::Message& message);
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
     void snapshot_queued();  // snapshot_next_ holds a new snapshot: wake the writer
 
-    asio::ip::tcp::socket socket_;
+    boost::asio::ip::tcp::socket socket_;
     server& owner_;
     uint64_t id_;
     std::string peer_;
@@ -58,10 +58,10 @@ private:
     bool snapshot_pending_ = false;
     bool closing_ = false;
     bool closed_ = false;
-    int64_t waiting_since_ns_ = 0;  // when output began to wait unwritten; 0 = nothing waits
-    asio::steady_timer wake_;       // wakes the writer
-    asio::steady_timer handshake_;  // Hello deadline
-    asio::steady_timer linger_;     // bounds how long a closing session may flush
+    int64_t waiting_since_ns_ = 0;         // when output began to wait unwritten; 0 = nothing waits
+    boost::asio::steady_timer wake_;       // wakes the writer
+    boost::asio::steady_timer handshake_;  // Hello deadline
+    boost::asio::steady_timer linger_;     // bounds how long a closing session may flush
 };
 
 }  // namespace arena::net

@@ -7,7 +7,8 @@
 
 namespace arena::ops {
 
-agones_client::agones_client(asio::io_context& io, agones_options options, std::function<bool()> healthy, log_fn log)
+agones_client::agones_client(boost::asio::io_context& io, agones_options options, std::function<bool()> healthy,
+                             log_fn log)
     : io_(io),
       options_(std::move(options)),
       healthy_(std::move(healthy)),
@@ -18,7 +19,7 @@ agones_client::agones_client(asio::io_context& io, agones_options options, std::
 void agones_client::start() {
     if (started_) return;
     started_ = true;
-    asio::co_spawn(io_, run(), asio::detached);
+    boost::asio::co_spawn(io_, run(), boost::asio::detached);
 }
 
 void agones_client::shutdown(std::function<void()> done) {
@@ -31,7 +32,7 @@ void agones_client::shutdown(std::function<void()> done) {
     stopping_ = true;
     wake_.cancel();  // out of the backoff or ping wait, on to /shutdown
     deadline_.expires_after(std::chrono::nanoseconds(options_.shutdown_timeout_ns));
-    deadline_.async_wait([this](const asio::error_code& ec) {
+    deadline_.async_wait([this](const boost::system::error_code& ec) {
         if (!ec) finish_shutdown("timed out");
     });
     start();  // a match that ended before start() still tells Agones
@@ -44,11 +45,11 @@ void agones_client::finish_shutdown(const char* how) {
     wake_.cancel();
     // Posted: the caller's `done` usually stops the io_context, and must not run inside
     // shutdown() or a timer handler of ours.
-    for (auto& done : done_) asio::post(io_, std::move(done));
+    for (auto& done : done_) boost::asio::post(io_, std::move(done));
     done_.clear();
 }
 
-asio::awaitable<bool> agones_client::post(const char* path) {
+boost::asio::awaitable<bool> agones_client::post(const char* path) {
     const http_result r =
         co_await http_post(io_.get_executor(), options_.host, options_.port, path, "{}", options_.request_timeout_ns);
     if (!r.ok() && log_ && !finished_)
@@ -57,13 +58,13 @@ asio::awaitable<bool> agones_client::post(const char* path) {
     co_return r.ok();
 }
 
-asio::awaitable<void> agones_client::sleep(int64_t ns) {
+boost::asio::awaitable<void> agones_client::sleep(int64_t ns) {
     wake_.expires_after(std::chrono::nanoseconds(ns));
-    asio::error_code ec;
-    co_await wake_.async_wait(asio::redirect_error(asio::use_awaitable, ec));
+    boost::system::error_code ec;
+    co_await wake_.async_wait(boost::asio::redirect_error(boost::asio::use_awaitable, ec));
 }
 
-asio::awaitable<void> agones_client::run() {
+boost::asio::awaitable<void> agones_client::run() {
     // Ready: the sidecar may start after us (Agones starts the pod's containers together).
     backoff retry(options_.retry_initial_ns, options_.retry_max_ns);
     while (!stopping_) {

@@ -4,7 +4,7 @@
 // advances, POST /shutdown when the match ends. Agones marks a server Unhealthy when pings
 // stop, so they are sent only while `healthy()` says the world is really stepping: a wedged
 // tick loop must look dead even though this io thread still runs.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -25,7 +25,7 @@ using log_fn = std::function<void(const std::string&)>;
 
 class agones_client {
 public:
-    agones_client(asio::io_context& io, agones_options options, std::function<bool()> healthy, log_fn log);
+    agones_client(boost::asio::io_context& io, agones_options options, std::function<bool()> healthy, log_fn log);
 
     // POST /ready (retrying with backoff until the sidecar answers 2xx), then the health pings.
     void start();
@@ -38,17 +38,17 @@ public:
     uint64_t health_pings() const { return health_pings_; }
 
 private:
-    asio::awaitable<void> run();
-    asio::awaitable<bool> post(const char* path);
-    asio::awaitable<void> sleep(int64_t ns);
+    boost::asio::awaitable<void> run();
+    boost::asio::awaitable<bool> post(const char* path);
+    boost::asio::awaitable<void> sleep(int64_t ns);
     void finish_shutdown(const char* how);
 
-    asio::io_context& io_;
+    boost::asio::io_context& io_;
     agones_options options_;
     std::function<bool()> healthy_;
     log_fn log_;
-    asio::steady_timer wake_;      // the sleep between attempts; shutdown() cuts it short
-    asio::steady_timer deadline_;  // bounds the shutdown phase
+    boost::asio::steady_timer wake_;      // the sleep between attempts; shutdown() cuts it short
+    boost::asio::steady_timer deadline_;  // bounds the shutdown phase
     bool started_ = false;
     bool stopping_ = false;
     bool finished_ = false;

@@ -7,53 +7,55 @@
 
 namespace arena::ops {
 
-using asio::ip::tcp;
+using boost::asio::ip::tcp;
 
 namespace {
 
 constexpr size_t max_response_bytes = 16 * 1024;  // a response head; the sidecar sends a few lines
 
 struct exchange {
-    explicit exchange(asio::any_io_executor ex) : socket(ex), timer(ex) {}
+    explicit exchange(boost::asio::any_io_executor ex) : socket(ex), timer(ex) {}
     tcp::socket socket;
-    asio::steady_timer timer;
+    boost::asio::steady_timer timer;
     bool timed_out = false;
 };
 
 }  // namespace
 
-asio::awaitable<http_result> http_post(asio::any_io_executor executor, std::string host, uint16_t port,
-                                       std::string path, std::string json_body, int64_t timeout_ns) {
+boost::asio::awaitable<http_result> http_post(boost::asio::any_io_executor executor, std::string host, uint16_t port,
+                                              std::string path, std::string json_body, int64_t timeout_ns) {
     // The timer's handler shares ownership, so firing late never touches a freed socket.
     auto x = std::make_shared<exchange>(executor);
     x->timer.expires_after(std::chrono::nanoseconds(timeout_ns));
-    x->timer.async_wait([x](const asio::error_code& ec) {
+    x->timer.async_wait([x](const boost::system::error_code& ec) {
         if (ec) return;
         x->timed_out = true;
-        asio::error_code ignored;
+        boost::system::error_code ignored;
         x->socket.close(ignored);
     });
 
-    asio::error_code ec;
-    const auto address = asio::ip::make_address(host, ec);
+    boost::system::error_code ec;
+    const auto address = boost::asio::ip::make_address(host, ec);
     if (ec) {
         x->timer.cancel();
         co_return http_result{0, "bad address " + host};
     }
-    co_await x->socket.async_connect(tcp::endpoint(address, port), asio::redirect_error(asio::use_awaitable, ec));
+    co_await x->socket.async_connect(tcp::endpoint(address, port),
+                                     boost::asio::redirect_error(boost::asio::use_awaitable, ec));
     if (!ec) {
         const std::string request = format_post(host, port, path, json_body);
-        co_await asio::async_write(x->socket, asio::buffer(request), asio::redirect_error(asio::use_awaitable, ec));
+        co_await boost::asio::async_write(x->socket, boost::asio::buffer(request),
+                                          boost::asio::redirect_error(boost::asio::use_awaitable, ec));
     }
     std::string response;
     if (!ec) {
         // Only the status line matters, so the head is enough: no waiting for the body or for
         // a sidecar that keeps the connection open despite "Connection: close".
-        co_await asio::async_read_until(x->socket, asio::dynamic_buffer(response, max_response_bytes), "\r\n\r\n",
-                                        asio::redirect_error(asio::use_awaitable, ec));
+        co_await boost::asio::async_read_until(x->socket, boost::asio::dynamic_buffer(response, max_response_bytes),
+                                               "\r\n\r\n", boost::asio::redirect_error(boost::asio::use_awaitable, ec));
     }
     x->timer.cancel();
-    asio::error_code ignored;
+    boost::system::error_code ignored;
     x->socket.close(ignored);
     if (x->timed_out) co_return http_result{0, "timed out"};
     if (ec) co_return http_result{0, ec.message()};

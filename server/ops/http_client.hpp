@@ -1,7 +1,7 @@
 #pragma once
 // One HTTP POST over a fresh loopback connection, bounded by a timeout: all the Agones sidecar
 // needs. Connection: close, so the response ends where the stream ends.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdint>
 #include <string>
 
@@ -13,7 +13,7 @@ struct http_result {
     bool ok() const { return status >= 200 && status < 300; }
 };
 
-asio::awaitable<http_result> http_post(asio::any_io_executor executor, std::string host, uint16_t port,
-                                       std::string path, std::string json_body, int64_t timeout_ns);
+boost::asio::awaitable<http_result> http_post(boost::asio::any_io_executor executor, std::string host, uint16_t port,
+                                              std::string path, std::string json_body, int64_t timeout_ns);
 
 }  // namespace arena::ops

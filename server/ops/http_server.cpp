@@ -4,7 +4,7 @@
 
 namespace arena::ops {
 
-using asio::ip::tcp;
+using boost::asio::ip::tcp;
 
 namespace {
 
@@ -14,14 +14,14 @@ namespace {
 struct timed_socket {
     explicit timed_socket(tcp::socket s) : socket(std::move(s)), timer(socket.get_executor()) {}
     tcp::socket socket;
-    asio::steady_timer timer;
+    boost::asio::steady_timer timer;
 };
 
 void arm_deadline(const std::shared_ptr<timed_socket>& conn, int64_t timeout_ns) {
     conn->timer.expires_after(std::chrono::nanoseconds(timeout_ns));
-    conn->timer.async_wait([conn](const asio::error_code& ec) {
+    conn->timer.async_wait([conn](const boost::system::error_code& ec) {
         if (!ec) {
-            asio::error_code ignored;
+            boost::system::error_code ignored;
             conn->socket.close(ignored);
         }
     });
@@ -29,7 +29,7 @@ void arm_deadline(const std::shared_ptr<timed_socket>& conn, int64_t timeout_ns)
 
 }  // namespace
 
-http_server::http_server(asio::io_context& io, http_server_options options, http_handlers handlers)
+http_server::http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers)
     : io_(io), options_(std::move(options)), handlers_(std::move(handlers)), acceptor_(io) {}
 
 http_server::~http_server() {
@@ -38,33 +38,34 @@ http_server::~http_server() {
 }
 
 void http_server::start() {
-    const tcp::endpoint endpoint(asio::ip::make_address(options_.bind), options_.port);
+    const tcp::endpoint endpoint(boost::asio::ip::make_address(options_.bind), options_.port);
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(tcp::acceptor::reuse_address(true));
     acceptor_.bind(endpoint);
     acceptor_.listen();
     port_ = acceptor_.local_endpoint().port();
-    asio::co_spawn(io_, accept_loop(), asio::detached);
+    boost::asio::co_spawn(io_, accept_loop(), boost::asio::detached);
 }
 
 void http_server::stop() {
-    asio::error_code ignored;
+    boost::system::error_code ignored;
     acceptor_.close(ignored);
 }
 
-asio::awaitable<void> http_server::accept_loop() {
+boost::asio::awaitable<void> http_server::accept_loop() {
     const auto state = state_;
     for (;;) {
-        asio::error_code ec;
-        tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(asio::use_awaitable, ec));
-        if (!state->alive || ec == asio::error::operation_aborted || !acceptor_.is_open()) co_return;
+        boost::system::error_code ec;
+        tcp::socket socket =
+            co_await acceptor_.async_accept(boost::asio::redirect_error(boost::asio::use_awaitable, ec));
+        if (!state->alive || ec == boost::asio::error::operation_aborted || !acceptor_.is_open()) co_return;
         if (ec) continue;                                       // e.g. EMFILE: the next accept may succeed
         if (state->open >= options_.max_connections) continue;  // the socket closes as it goes
-        asio::co_spawn(io_, serve(std::move(socket)), asio::detached);
+        boost::asio::co_spawn(io_, serve(std::move(socket)), boost::asio::detached);
     }
 }
 
-asio::awaitable<void> http_server::serve(tcp::socket socket) {
+boost::asio::awaitable<void> http_server::serve(tcp::socket socket) {
     const auto state = state_;
     ++state->open;
     // Copies: the server may be destroyed while this connection is still being answered.
@@ -74,9 +75,10 @@ asio::awaitable<void> http_server::serve(tcp::socket socket) {
     arm_deadline(conn, options_.read_timeout_ns);
 
     std::string head;
-    asio::error_code ec;
-    const size_t n = co_await asio::async_read_until(conn->socket, asio::dynamic_buffer(head, limit), "\r\n\r\n",
-                                                     asio::redirect_error(asio::use_awaitable, ec));
+    boost::system::error_code ec;
+    const size_t n =
+        co_await boost::asio::async_read_until(conn->socket, boost::asio::dynamic_buffer(head, limit), "\r\n\r\n",
+                                               boost::asio::redirect_error(boost::asio::use_awaitable, ec));
     std::string reply;
     if (!ec) {
         auto parsed = parse_request_head(std::string_view(head).substr(0, n));
@@ -84,13 +86,14 @@ asio::awaitable<void> http_server::serve(tcp::socket socket) {
             reply = state->alive ? format_response(route(*request, handlers)) : format_error({503, "shutting down"});
         else
             reply = format_error(std::get<http_error>(parsed));
-    } else if (ec == asio::error::not_found) {
+    } else if (ec == boost::asio::error::not_found) {
         // async_read_until stops at the buffer's max_size without finding the blank line.
         reply = format_error({431, "request head larger than " + std::to_string(limit) + " bytes"});
     }
     // Otherwise the peer went away or the deadline closed the socket: nothing to answer.
     if (!reply.empty() && conn->socket.is_open()) {
-        co_await asio::async_write(conn->socket, asio::buffer(reply), asio::redirect_error(asio::use_awaitable, ec));
+        co_await boost::asio::async_write(conn->socket, boost::asio::buffer(reply),
+                                          boost::asio::redirect_error(boost::asio::use_awaitable, ec));
         conn->socket.shutdown(tcp::socket::shutdown_send, ec);
     }
     conn->timer.cancel();

@@ -3,7 +3,7 @@
 // connection. Small on purpose: it answers Prometheus, the kubelet, Docker's HEALTHCHECK and
 // an operator's curl, never players, so it bounds what a stray client can cost (request
 // size, read time, open connections) and nothing more.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,10 +22,10 @@ struct http_server_options {
 
 class http_server {
 public:
-    http_server(asio::io_context& io, http_server_options options, http_handlers handlers);
+    http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers);
     ~http_server();
 
-    // Binds and listens (throws std::system_error when it cannot), then accepts in the
+    // Binds and listens (throws boost::system::system_error when it cannot), then accepts in the
     // background on the io_context.
     void start();
     // Stops accepting; connections being answered finish on their own. Idempotent.
@@ -33,13 +33,13 @@ public:
     uint16_t port() const { return port_; }
 
 private:
-    asio::awaitable<void> accept_loop();
-    asio::awaitable<void> serve(asio::ip::tcp::socket socket);
+    boost::asio::awaitable<void> accept_loop();
+    boost::asio::awaitable<void> serve(boost::asio::ip::tcp::socket socket);
 
-    asio::io_context& io_;
+    boost::asio::io_context& io_;
     http_server_options options_;
     http_handlers handlers_;
-    asio::ip::tcp::acceptor acceptor_;
+    boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
     // Shared with the connection coroutines, so that one still running after the server is
     // gone finds `alive` false instead of a dangling pointer.

@@ -2,7 +2,7 @@
 
 namespace arena::ops {
 
-ops_service::ops_service(asio::io_context& io, ops_options options, std::function<server_metrics()> metrics,
+ops_service::ops_service(boost::asio::io_context& io, ops_options options, std::function<server_metrics()> metrics,
                          std::function<bool()> healthy, log_fn log)
     : io_(io),
       options_(std::move(options)),
@@ -46,7 +46,7 @@ void ops_service::on_match_end(std::function<void()> done) {
         agones_->shutdown(std::move(done));
         return;
     }
-    if (done) asio::post(io_, std::move(done));
+    if (done) boost::asio::post(io_, std::move(done));
 }
 
 }  // namespace arena::ops

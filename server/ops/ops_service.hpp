@@ -3,7 +3,7 @@
 // /metrics + /healthz endpoint and the Agones sidecar client. The server stays unaware of
 // both: it hands over a function that snapshots its figures and one that says whether its
 // tick loop advances.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -25,10 +25,10 @@ struct ops_options {
 
 class ops_service {
 public:
-    ops_service(asio::io_context& io, ops_options options, std::function<server_metrics()> metrics,
+    ops_service(boost::asio::io_context& io, ops_options options, std::function<server_metrics()> metrics,
                 std::function<bool()> healthy, log_fn log = {});
 
-    // Call once the game port listens: binds the metrics port (throws std::system_error when
+    // Call once the game port listens: binds the metrics port (throws boost::system::system_error when
     // it cannot) and tells Agones the server is ready.
     void start_after_listening();
     // The match is over (end of --duration, SIGTERM, ...): tells Agones and calls `done` on
@@ -42,7 +42,7 @@ public:
     const ops_options& options() const { return options_; }
 
 private:
-    asio::io_context& io_;
+    boost::asio::io_context& io_;
     ops_options options_;
     std::function<server_metrics()> metrics_;
     std::function<bool()> healthy_;

@@ -36,7 +36,7 @@ struct client_fixture {
     std::atomic<bool> healthy{true};
     std::mutex log_mutex;
     std::vector<std::pair<clock_type::time_point, std::string>> log;
-    asio::io_context io;
+    boost::asio::io_context io;
     agones_client client;
     io_thread runner;
 

@@ -21,7 +21,7 @@ namespace {
 struct endpoint_fixture {
     std::atomic<bool> healthy{true};
     std::atomic<int> scrapes{0};
-    asio::io_context io;
+    boost::asio::io_context io;
     http_server server;
     io_thread runner;
 

@@ -170,7 +170,7 @@ bool fake_sidecar::wait_until(const std::function<bool(const std::vector<call>&)
 
 void io_thread::run_on_io(std::function<void()> f) {
     std::promise<void> finished;
-    asio::post(io_, [&] {
+    boost::asio::post(io_, [&] {
         f();
         finished.set_value();
     });

@@ -2,7 +2,7 @@
 // Test helpers for the ops endpoints, in plain POSIX so that the fakes cannot share a bug with
 // the Asio code under test: a raw HTTP exchange, a fake Agones sidecar that records calls, and
 // an io_context running on its own thread.
-#include <asio.hpp>
+#include <boost/asio.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -65,8 +65,8 @@ private:
 // io_context, so that it stops first.
 class io_thread {
 public:
-    explicit io_thread(asio::io_context& io)
-        : io_(io), guard_(asio::make_work_guard(io)), thread_([this] { io_.run(); }) {}
+    explicit io_thread(boost::asio::io_context& io)
+        : io_(io), guard_(boost::asio::make_work_guard(io)), thread_([this] { io_.run(); }) {}
     ~io_thread() {
         io_.stop();
         thread_.join();
@@ -75,8 +75,8 @@ public:
     void run_on_io(std::function<void()> f);
 
 private:
-    asio::io_context& io_;
-    asio::executor_work_guard<asio::io_context::executor_type> guard_;
+    boost::asio::io_context& io_;
+    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> guard_;
     std::thread thread_;
 };
 
