@@ -1,30 +1,119 @@
 #include "server/ops/http_server.hpp"
 
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <cctype>
 #include <chrono>
+#include <optional>
 
 namespace arena::ops {
 
+namespace beast = boost::beast;
+namespace http = beast::http;
 using boost::asio::ip::tcp;
 
 namespace {
 
-// A socket with a deadline: when the timer fires the socket closes, which ends any read in
-// progress. Both live in one shared object that the timer's handler keeps alive, so a late
-// handler never touches a socket that is gone.
-struct timed_socket {
-    explicit timed_socket(tcp::socket s) : socket(std::move(s)), timer(socket.get_executor()) {}
-    tcp::socket socket;
-    boost::asio::steady_timer timer;
+auto use_ec(boost::system::error_code& ec) {
+    return boost::asio::redirect_error(boost::asio::use_awaitable, ec);
+}
+
+// A refusal to answer with: status and a one-line reason for the body.
+struct http_error {
+    int status;
+    std::string reason;
 };
 
-void arm_deadline(const std::shared_ptr<timed_socket>& conn, int64_t timeout_ns) {
-    conn->timer.expires_after(std::chrono::nanoseconds(timeout_ns));
-    conn->timer.async_wait([conn](const boost::system::error_code& ec) {
-        if (!ec) {
-            boost::system::error_code ignored;
-            conn->socket.close(ignored);
-        }
-    });
+// What reading a request head ends in: a request, an error to answer, or nothing to answer
+// (the peer went away, or the deadline passed: neither is waiting for a reply).
+struct read_result {
+    std::optional<http_request> request;
+    std::optional<http_error> error;
+};
+
+// Beast refuses any version but 1.0 and 1.1 as malformed; a well-formed other version ("HTTP/2.0")
+// deserves 505, which says what the client can do about it.
+http_error version_error(const beast::flat_buffer& buffer) {
+    const std::string_view text(static_cast<const char*>(buffer.data().data()), buffer.size());
+    const std::string_view line = text.substr(0, text.find("\r\n"));
+    const bool well_formed = line.size() > 9 && line.substr(line.size() - 9, 6) == " HTTP/" &&
+                             std::isdigit(static_cast<unsigned char>(line[line.size() - 3])) &&
+                             line[line.size() - 2] == '.' &&
+                             std::isdigit(static_cast<unsigned char>(line[line.size() - 1]));
+    if (well_formed) return {505, "only HTTP/1.0 and HTTP/1.1"};
+    return {400, "bad version"};
+}
+
+// Beast's parser does the parsing (HTTP/1.0 and 1.1 only); this adds the rules it leaves to us:
+// an upper-case method, an origin-form target.
+read_result check_head(const http::request_parser<http::empty_body>& parser) {
+    const auto& head = parser.get();
+    const auto method = head.method_string();
+    for (char c : method)
+        if (c < 'A' || c > 'Z') return {{}, http_error{400, "malformed method"}};
+    const auto target = head.target();
+    if (target.empty() || target.front() != '/') return {{}, http_error{400, "malformed target"}};
+    const auto path = target.substr(0, target.find('?'));
+    return {http_request{std::string(method), std::string(path)}, {}};
+}
+
+// Reads one request head of at most `limit` bytes, feeding Beast's parser as bytes arrive.
+boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, size_t limit) {
+    http::request_parser<http::empty_body> parser;
+    parser.header_limit(static_cast<uint32_t>(limit));
+    beast::flat_buffer buffer(limit);
+    for (;;) {
+        boost::system::error_code ec;
+        const size_t room = std::min<size_t>(buffer.max_size() - buffer.size(), 2048);
+        const size_t n = co_await stream.async_read_some(buffer.prepare(room), use_ec(ec));
+        if (ec) co_return read_result{};
+        buffer.commit(n);
+        buffer.consume(parser.put(buffer.data(), ec));
+        if (!ec && parser.is_header_done()) co_return check_head(parser);
+        if (ec == http::error::header_limit || (ec == http::error::need_more && buffer.size() >= limit))
+            co_return read_result{{}, http_error{431, "request head larger than " + std::to_string(limit) + " bytes"}};
+        if (ec == http::error::bad_version) co_return read_result{{}, version_error(buffer)};
+        if (ec && ec != http::error::need_more) co_return read_result{{}, http_error{400, ec.message()}};
+    }
+}
+
+http_response plain(int status, std::string body) {
+    return {status, "text/plain; charset=utf-8", std::move(body)};
+}
+
+http::response<http::string_body> to_beast(const http_response& r) {
+    http::response<http::string_body> response{static_cast<http::status>(r.status), 11};
+    response.set(http::field::content_type, r.content_type);
+    if (r.status == 405) response.set(http::field::allow, "GET");
+    response.set(http::field::cache_control, "no-store");
+    response.keep_alive(false);  // Connection: close: one request per connection
+    response.body() = r.body;
+    response.prepare_payload();
+    return response;
+}
+
+boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> state, http_handlers handlers,
+                                   http_server_options options, tcp::socket socket) {
+    ++state->open;
+    beast::tcp_stream stream(std::move(socket));
+    stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
+    const read_result head = co_await read_head(stream, options.max_request_bytes);
+
+    std::optional<http_response> reply;
+    if (head.request)
+        reply = state->alive ? route(*head.request, handlers) : plain(503, "shutting down\n");
+    else if (head.error)
+        reply = plain(head.error->status, head.error->reason + "\n");
+    // Otherwise the peer went away or the deadline passed: nothing to answer.
+    boost::system::error_code ec;
+    if (reply) {
+        stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
+        auto response = to_beast(*reply);
+        co_await http::async_write(stream, response, use_ec(ec));
+        stream.socket().shutdown(tcp::socket::shutdown_send, ec);
+    }
+    stream.socket().close(ec);
+    --state->open;
 }
 
 }  // namespace
@@ -56,49 +145,13 @@ boost::asio::awaitable<void> http_server::accept_loop() {
     const auto state = state_;
     for (;;) {
         boost::system::error_code ec;
-        tcp::socket socket =
-            co_await acceptor_.async_accept(boost::asio::redirect_error(boost::asio::use_awaitable, ec));
+        tcp::socket socket = co_await acceptor_.async_accept(use_ec(ec));
         if (!state->alive || ec == boost::asio::error::operation_aborted || !acceptor_.is_open()) co_return;
         if (ec) continue;                                       // e.g. EMFILE: the next accept may succeed
         if (state->open >= options_.max_connections) continue;  // the socket closes as it goes
-        boost::asio::co_spawn(io_, serve(std::move(socket)), boost::asio::detached);
+        // Copies: the server may be destroyed while this connection is still being answered.
+        boost::asio::co_spawn(io_, serve(state, handlers_, options_, std::move(socket)), boost::asio::detached);
     }
-}
-
-boost::asio::awaitable<void> http_server::serve(tcp::socket socket) {
-    const auto state = state_;
-    ++state->open;
-    // Copies: the server may be destroyed while this connection is still being answered.
-    const http_handlers handlers = handlers_;
-    const size_t limit = options_.max_request_bytes;
-    auto conn = std::make_shared<timed_socket>(std::move(socket));
-    arm_deadline(conn, options_.read_timeout_ns);
-
-    std::string head;
-    boost::system::error_code ec;
-    const size_t n =
-        co_await boost::asio::async_read_until(conn->socket, boost::asio::dynamic_buffer(head, limit), "\r\n\r\n",
-                                               boost::asio::redirect_error(boost::asio::use_awaitable, ec));
-    std::string reply;
-    if (!ec) {
-        auto parsed = parse_request_head(std::string_view(head).substr(0, n));
-        if (auto* request = std::get_if<http_request>(&parsed))
-            reply = state->alive ? format_response(route(*request, handlers)) : format_error({503, "shutting down"});
-        else
-            reply = format_error(std::get<http_error>(parsed));
-    } else if (ec == boost::asio::error::not_found) {
-        // async_read_until stops at the buffer's max_size without finding the blank line.
-        reply = format_error({431, "request head larger than " + std::to_string(limit) + " bytes"});
-    }
-    // Otherwise the peer went away or the deadline closed the socket: nothing to answer.
-    if (!reply.empty() && conn->socket.is_open()) {
-        co_await boost::asio::async_write(conn->socket, boost::asio::buffer(reply),
-                                          boost::asio::redirect_error(boost::asio::use_awaitable, ec));
-        conn->socket.shutdown(tcp::socket::shutdown_send, ec);
-    }
-    conn->timer.cancel();
-    conn->socket.close(ec);
-    --state->open;
 }
 
 }  // namespace arena::ops

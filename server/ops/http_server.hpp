@@ -2,13 +2,14 @@
 // The ops HTTP endpoint: GET /metrics and GET /healthz on their own port, one request per
 // connection. Small on purpose: it answers Prometheus, the kubelet, Docker's HEALTHCHECK and
 // an operator's curl, never players, so it bounds what a stray client can cost (request
-// size, read time, open connections) and nothing more.
+// size, read time, open connections) and nothing more. HTTP itself is Boost.Beast's; Beast
+// stays inside http_server.cpp (it is heavy to compile).
 #include <boost/asio.hpp>
 #include <cstdint>
 #include <memory>
 #include <string>
 
-#include "server/ops/http_message.hpp"
+#include "server/ops/http_routes.hpp"
 
 namespace arena::ops {
 
@@ -32,21 +33,21 @@ public:
     void stop();
     uint16_t port() const { return port_; }
 
-private:
-    boost::asio::awaitable<void> accept_loop();
-    boost::asio::awaitable<void> serve(boost::asio::ip::tcp::socket socket);
-
-    boost::asio::io_context& io_;
-    http_server_options options_;
-    http_handlers handlers_;
-    boost::asio::ip::tcp::acceptor acceptor_;
-    uint16_t port_ = 0;
     // Shared with the connection coroutines, so that one still running after the server is
     // gone finds `alive` false instead of a dangling pointer.
     struct shared_state {
         bool alive = true;
         uint32_t open = 0;
     };
+
+private:
+    boost::asio::awaitable<void> accept_loop();
+
+    boost::asio::io_context& io_;
+    http_server_options options_;
+    http_handlers handlers_;
+    boost::asio::ip::tcp::acceptor acceptor_;
+    uint16_t port_ = 0;
     std::shared_ptr<shared_state> state_ = std::make_shared<shared_state>();
 };
 
