@@ -7,9 +7,6 @@
 #include <boost/asio/use_awaitable.hpp>
 #include <csignal>
 #include <cstdio>
-#include <variant>
-
-#include "server/config/config_json.hpp"
 
 namespace arena::bots {
 
@@ -40,49 +37,40 @@ fleet::fleet(boost::asio::io_context& io, options opts)
             (opts_.misbehave != misbehavior::none && is_misbehaving(i, opts_.bots, opts_.misbehave_share))
                 ? opts_.misbehave
                 : misbehavior::none;
-        bots_.push_back(std::make_unique<bot>(*this, i, resolve_behavior(opts_.behavior, i), mode));
+        client_params params;
+        params.index = i;
+        params.kind = resolve_behavior(opts_.behavior, i);
+        params.mode = mode;
+        params.seed = opts_.seed;
+        params.name = opts_.name_prefix + "-" + std::to_string(i);
+        params.token = token_for(opts_, params.name);
+        params.delta_snapshots = !opts_.full_snapshots;
+        params.join_timeout = static_cast<time_ns>(opts_.join_timeout * 1e9);
+        bots_.push_back(std::make_unique<bot>(*this, std::move(params)));
     }
 }
 
 fleet::~fleet() = default;
 
-std::uint64_t fleet::now_ns() const {
-    return static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(clock::now() - start_).count());
+time_ns fleet::now_ns() const {
+    return static_cast<time_ns>(std::chrono::duration_cast<std::chrono::nanoseconds>(clock::now() - start_).count());
 }
 
 void fleet::count_in(std::size_t bytes) {
-    metrics_.bytes_in += bytes;
-    metrics_.interval_bytes_in += bytes;
+    metrics().bytes_in += bytes;
+    metrics().interval_bytes_in += bytes;
 }
 
 void fleet::count_out(std::size_t bytes) {
-    metrics_.bytes_out += bytes;
-    metrics_.interval_bytes_out += bytes;
-}
-
-const world::world_config* fleet::config_for(const protocol::welcome_info& welcome, std::string& error) {
-    if (config_ && welcome.world_config == config_text_) return &*config_;
-    auto parsed = config::parse_config_json(welcome.world_config);
-    if (auto* e = std::get_if<config::config_error>(&parsed)) {
-        error = e->message;
-        return nullptr;
-    }
-    config_ = std::get<world::world_config>(std::move(parsed));
-    config_text_ = welcome.world_config;
-    return &*config_;
+    metrics().bytes_out += bytes;
+    metrics().interval_bytes_out += bytes;
 }
 
 void fleet::on_joined(const protocol::welcome_info& welcome) {
-    ++playing_;
-    if (tick_rate_ != 0 || stopping_) return;
+    client_shared::on_joined(welcome);
+    if (tick_rate_ != 0 || stopping()) return;
     tick_rate_ = welcome.tick_rate;
     boost::asio::co_spawn(io_, ticker(), boost::asio::detached);
-}
-
-void fleet::on_bot_ended(bool was_playing) {
-    ++ended_;
-    if (was_playing) --playing_;
 }
 
 boost::asio::awaitable<void> fleet::run() {
@@ -109,7 +97,7 @@ boost::asio::awaitable<void> fleet::run() {
 void fleet::watch_signals() {
     signals_.async_wait([this](const boost::system::error_code& ec, int) {
         if (ec) return;
-        if (stopping_) {
+        if (stopping()) {
             // A second signal: stop waiting for the goodbyes.
             for (auto& b : bots_) b->abort("interrupted");
             return;
@@ -124,7 +112,7 @@ boost::asio::awaitable<void> fleet::launch() {
     const auto start = clock::now();
     boost::system::error_code ec;
     std::size_t next = 0;
-    while (next < bots_.size() && !stopping_) {
+    while (next < bots_.size() && !stopping()) {
         // Every bot due by now, not one per wake-up: under load one turn of the event loop
         // can take longer than the interval between two connections.
         const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
@@ -152,61 +140,62 @@ boost::asio::awaitable<void> fleet::ticker() {
     };
     std::uint64_t tick = 0;
     boost::system::error_code ec;
-    while (!stopping_) {
+    while (!stopping()) {
         ++tick;
         tick_timer_.expires_at(due(tick));
         co_await tick_timer_.async_wait(redirect_error(use_awaitable, ec));
-        if (stopping_) break;
+        if (stopping()) break;
         const auto now = clock::now();
         if (now > due(tick + max_catch_up_ticks)) {
             // The process lagged (overloaded machine): skip to now rather than burst.
             const auto behind =
                 static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now - origin).count() *
                                            tick_rate_ / 1'000'000'000LL);
-            metrics_.ticks_skipped += behind - tick;
+            metrics().ticks_skipped += behind - tick;
             tick = behind;
         }
-        for (auto& b : bots_) b->on_tick(tick);
+        const time_ns at = now_ns();
+        for (auto& b : bots_) b->on_tick(tick, at);
     }
 }
 
 void fleet::roll_interval(clock::time_point now, double interval_s) {
     if (!opts_.quiet) {
         const double t = std::chrono::duration<double>(now - start_).count();
-        std::printf("%s\n", progress_line(t, playing_, opts_.bots, interval_s, metrics_).c_str());
+        std::printf("%s\n", progress_line(t, playing(), opts_.bots, interval_s, metrics()).c_str());
         std::fflush(stdout);
     }
     // Per-second figures only from whole-enough seconds: a 0.1 s tail would skew them.
     if (interval_s >= 0.5) {
-        metrics_.snapshots_per_s.add(static_cast<double>(metrics_.interval_snapshots) / interval_s);
-        metrics_.bytes_in_per_s.add(static_cast<double>(metrics_.interval_bytes_in) / interval_s);
-        metrics_.bytes_out_per_s.add(static_cast<double>(metrics_.interval_bytes_out) / interval_s);
+        metrics().snapshots_per_s.add(static_cast<double>(metrics().interval_snapshots) / interval_s);
+        metrics().bytes_in_per_s.add(static_cast<double>(metrics().interval_bytes_in) / interval_s);
+        metrics().bytes_out_per_s.add(static_cast<double>(metrics().interval_bytes_out) / interval_s);
     }
-    metrics_.interval_snapshots = 0;
-    metrics_.interval_bytes_in = 0;
-    metrics_.interval_bytes_out = 0;
-    metrics_.interval_rtt_ms.clear();
-    metrics_.interval_prediction_error_m.clear();
+    metrics().interval_snapshots = 0;
+    metrics().interval_bytes_in = 0;
+    metrics().interval_bytes_out = 0;
+    metrics().interval_rtt_ms.clear();
+    metrics().interval_prediction_error_m.clear();
 }
 
 boost::asio::awaitable<void> fleet::report_loop() {
     auto last = start_;
     boost::system::error_code ec;
-    for (int second = 1; !stopping_; ++second) {
+    for (int second = 1; !stopping(); ++second) {
         report_timer_.expires_at(std::min(start_ + std::chrono::seconds(second), end_));
         co_await report_timer_.async_wait(redirect_error(use_awaitable, ec));
         const auto now = clock::now();
         roll_interval(now, std::chrono::duration<double>(now - last).count());
         last = now;
-        for (auto& b : bots_) b->check_join_timeout(now);
-        const bool everyone_gone = all_launched_ && ended_ == launched_;
+        for (auto& b : bots_) b->check_join_timeout(now_ns());
+        const bool everyone_gone = all_launched_ && ended() == launched_;
         if (now >= end_ || everyone_gone) stop();
     }
 }
 
 void fleet::stop() {
-    if (stopping_) return;
-    stopping_ = true;
+    if (stopping()) return;
+    set_stopping();
     tick_timer_.cancel();
     launch_timer_.cancel();
     report_timer_.cancel();
@@ -216,7 +205,7 @@ void fleet::stop() {
 boost::asio::awaitable<void> fleet::wind_down() {
     const auto deadline = clock::now() + goodbye_grace;
     boost::system::error_code ec;
-    while (ended_ < launched_ && clock::now() < deadline) {
+    while (ended() < launched_ && clock::now() < deadline) {
         report_timer_.expires_after(20ms);
         co_await report_timer_.async_wait(redirect_error(use_awaitable, ec));
     }
@@ -229,11 +218,11 @@ final_report fleet::report() {
     std::vector<bot_outcome> outcomes;
     outcomes.reserve(bots_.size());
     for (const auto& b : bots_) {
-        b->add_final_figures(metrics_);
+        b->add_final_figures(metrics());
         outcomes.push_back(b->outcome());
     }
     const double seconds = std::chrono::duration<double>(clock::now() - start_).count();
-    return make_report(metrics_, outcomes, seconds);
+    return make_report(metrics(), outcomes, seconds);
 }
 
 }  // namespace arena::bots

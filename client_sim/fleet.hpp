@@ -1,7 +1,8 @@
 #pragma once
 // All the bots of one run, on one io_context and one thread: launches them at the connect
 // rate, drives every bot's input from one shared timer at the server's tick rate, prints a
-// progress line each second and ends the run after --duration (or on SIGINT/SIGTERM).
+// progress line each second and ends the run after --duration (or on SIGINT/SIGTERM). The
+// figures, the shared encoder and the parsed Welcome config are client_shared's.
 #include <boost/asio/awaitable.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -10,27 +11,26 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "client_sim/bot.hpp"
+#include "client_sim/client_shared.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/options.hpp"
 #include "client_sim/report.hpp"
 #include "protocol/messages.hpp"
-#include "server/world/config.hpp"
 
 namespace arena::bots {
 
-class fleet {
+class fleet : public client_shared {
 public:
     using clock = std::chrono::steady_clock;
 
     fleet(boost::asio::io_context& io, options opts);
     fleet(const fleet&) = delete;
     fleet& operator=(const fleet&) = delete;
-    ~fleet();
+    ~fleet() override;
 
     // The whole run; completes once every bot's session has ended.
     boost::asio::awaitable<void> run();
@@ -40,21 +40,13 @@ public:
     // --- for the bots --------------------------------------------------------------------
     boost::asio::io_context& io() { return io_; }
     const options& opts() const { return opts_; }
-    fleet_metrics& metrics() { return metrics_; }
-    // One builder for every bot's Inputs and Pings: one thread, so sharing is safe.
-    flatbuffers::FlatBufferBuilder& encoder() { return encoder_; }
     const boost::asio::ip::tcp::endpoint& endpoint() const { return endpoint_; }
-    bool stopping() const { return stopping_; }
-    // Nanoseconds since the run started: the Pings' client_time.
-    std::uint64_t now_ns() const;
+    // Nanoseconds since the run started: the time the bots' cores are given.
+    time_ns now_ns() const;
     void count_in(std::size_t bytes);
     void count_out(std::size_t bytes);
-    // The Welcome's world_config parsed once per distinct text (1000 bots share one), or
-    // null with `error` set.
-    const world::world_config* config_for(const protocol::welcome_info& welcome, std::string& error);
     // The first Welcome gives the tick rate and starts the shared ticker.
-    void on_joined(const protocol::welcome_info& welcome);
-    void on_bot_ended(bool was_playing);
+    void on_joined(const protocol::welcome_info& welcome) override;
 
 private:
     boost::asio::awaitable<void> launch();
@@ -68,8 +60,6 @@ private:
 
     boost::asio::io_context& io_;
     options opts_;
-    fleet_metrics metrics_;
-    flatbuffers::FlatBufferBuilder encoder_{256};
     std::vector<std::unique_ptr<bot>> bots_;
     boost::asio::ip::tcp::endpoint endpoint_;
     boost::asio::steady_timer tick_timer_;
@@ -79,14 +69,9 @@ private:
 
     clock::time_point start_{};
     clock::time_point end_{};
-    bool stopping_ = false;
     bool all_launched_ = false;
     std::uint32_t launched_ = 0;
-    std::uint32_t ended_ = 0;
-    std::uint32_t playing_ = 0;
     std::uint16_t tick_rate_ = 0;  // 0 until the first Welcome
-    std::string config_text_;      // the world_config that config_ was parsed from
-    std::optional<world::world_config> config_;
 };
 
 }  // namespace arena::bots

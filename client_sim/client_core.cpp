@@ -1,0 +1,304 @@
+#include "client_sim/client_core.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "client_sim/wire.hpp"
+#include "protocol/config_hash.hpp"
+#include "protocol/decode.hpp"
+#include "protocol/verify.hpp"
+
+namespace arena::bots {
+
+namespace {
+
+// A server that stops reading our inputs would make pending_ grow without end.
+constexpr std::size_t max_pending_bytes = 1 << 20;
+
+std::string reject_text(const protocol::reject_msg& reject) {
+    const char* name = protocol::EnumNameRejectCode(reject.code);
+    // A newer server may send a code we do not know: show its number.
+    const std::string code = (name != nullptr && *name != '\0')
+                                 ? std::string(name)
+                                 : "code " + std::to_string(static_cast<unsigned>(reject.code));
+    return code + ": " + reject.reason;
+}
+
+}  // namespace
+
+client_core::client_core(client_shared& shared, client_params params)
+    : shared_(shared),
+      params_(std::move(params)),
+      frames_(protocol::max_server_frame_body),
+      fault_rng_(params_.seed ^ (0xa0761d6478bd642fULL * (std::uint64_t{params_.index} + 1))) {
+    outcome_.misbehaving = params_.mode != misbehavior::none;
+}
+
+void client_core::launch(time_ns now) {
+    launched_at_ = now;
+    if (phase_ == phase::idle) phase_ = phase::connecting;
+}
+
+void client_core::connected() {
+    if (phase_ != phase::connecting) return;
+    phase_ = phase::joining;
+    queue(protocol::encode_hello(protocol::protocol_version, params_.name, params_.token, params_.delta_snapshots));
+}
+
+void client_core::on_bytes(std::span<const std::uint8_t> data, time_ns now) {
+    while (!data.empty() && phase_ != phase::ended) {
+        data = data.subspan(frames_.feed(data));
+        if (frames_.failed())
+            return end(end_kind::protocol_error, "bad frame from the server: " + std::string(frames_.error()));
+        if (frames_.has_frame()) {
+            handle_frame(frames_.frame(), now);
+            frames_.next();
+        }
+    }
+}
+
+void client_core::on_frame(std::span<const std::uint8_t> frame, time_ns now) {
+    if (phase_ == phase::ended) return;
+    // Through the frame reader all the same: it checks the prefix against the limit and gives
+    // FlatBuffers the 8-byte aligned copy it wants.
+    const std::size_t used = frames_.feed(frame);
+    if (frames_.failed())
+        return end(end_kind::protocol_error, "bad frame from the server: " + std::string(frames_.error()));
+    if (!frames_.has_frame() || used != frame.size())
+        return end(end_kind::protocol_error, "a message from the server that is not exactly one frame");
+    handle_frame(frames_.frame(), now);
+    frames_.next();
+}
+
+void client_core::flushed() {
+    if (close_after_flush_ && pending_.empty()) end(end_kind::orderly, close_reason_);
+}
+
+void client_core::queue(std::span<const std::uint8_t> bytes) {
+    pending_.insert(pending_.end(), bytes.begin(), bytes.end());
+}
+
+void client_core::handle_frame(std::span<const std::uint8_t> frame, time_ns now) {
+    message_bytes_ = frame.size();
+    const auto verified = protocol::verify_message(frame, protocol::server_frame_limits);
+    if (!verified) return end(end_kind::protocol_error, "invalid message from the server: " + verified.error);
+    const protocol::Message& message = *verified.value;
+    using protocol::Payload;
+    const Payload type = message.payload_type();
+    if (type == Payload::Welcome && phase_ == phase::joining) return on_welcome(message);
+    if (type == Payload::Snapshot && phase_ == phase::playing) return on_snapshot(message, now);
+    if (type == Payload::Pong && phase_ == phase::playing) return on_pong(message, now);
+    if (type == Payload::Reject) return on_reject(message);
+    if (type == Payload::Bye) return on_bye(message);
+    end(end_kind::protocol_error, "unexpected " + std::string(protocol::payload_name(type)) + " from the server " +
+                                      (phase_ == phase::joining ? "before Welcome" : "while playing"));
+}
+
+void client_core::on_welcome(const protocol::Message& message) {
+    const auto welcome = protocol::decode_welcome(message);
+    if (!welcome) return end(end_kind::protocol_error, "Welcome: " + welcome.error);
+    const protocol::welcome_info& w = welcome.value;
+    if (protocol::world_config_hash(w.world_config) != w.world_config_hash)
+        return end(end_kind::protocol_error, "Welcome: world_config_hash does not match world_config");
+    if (w.world_version != world::world_version)
+        return end(end_kind::protocol_error, "Welcome: world_version " + std::to_string(w.world_version) +
+                                                 ", this client predicts version " +
+                                                 std::to_string(world::world_version));
+    if (w.tick_rate == 0 || w.snapshot_rate == 0)
+        return end(end_kind::protocol_error, "Welcome: tick_rate and snapshot_rate must be positive");
+    std::string error;
+    const world::world_config* config = shared_.config_for(w, error);
+    if (config == nullptr) return end(end_kind::protocol_error, "Welcome: world_config: " + error);
+
+    player_id_ = w.player_id;
+    entity_id_ = w.entity_id;
+    tick_rate_ = w.tick_rate;
+    predictor_.emplace(*config, entity_id_, player_id_);
+    if (params_.delta_snapshots) deltas_.emplace(tick_rate_);
+    behavior_.emplace(params_.kind, params_.seed, params_.index, *config);
+    phase_ = phase::playing;
+    outcome_.joined = true;
+    shared_.on_joined(w);
+}
+
+void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
+    const auto decoded = protocol::decode_snapshot(message);
+    if (!decoded) return end(end_kind::protocol_error, "Snapshot: " + decoded.error);
+    const protocol::snapshot_view& snapshot = decoded.value;
+    fleet_metrics& m = shared_.metrics();
+    ++m.snapshots;
+    ++m.interval_snapshots;
+    if (snapshots_++ == 0) {
+        first_snapshot_at_ = now;
+    } else if (!outcome_.misbehaving) {
+        m.snapshot_gap_ms.add(static_cast<double>(now - last_snapshot_at_) / 1e6);
+    }
+    last_snapshot_at_ = now;
+    m.snapshot_bytes_each.add(static_cast<double>(message_bytes_));
+    m.snapshot_bytes += message_bytes_;
+
+    std::span<const protocol::BodyState> bodies = snapshot.bodies;
+    if (snapshot.is_delta) {
+        if (!deltas_) return end(end_kind::protocol_error, "Snapshot: a delta, but this bot asked for full snapshots");
+        ++m.delta_snapshots;
+        const auto view = deltas_->receive(snapshot);
+        if (!view) {
+            // The receiver dropped its baselines, so the next ack (0) brings a full view.
+            ++m.delta_errors;
+            ++m.delta_problems[view.error];
+            return;
+        }
+        m.delta_payload_bytes += snapshot.delta.size();
+        m.delta_bodies += view.value.size();
+        decoded_.clear();
+        for (const protocol::delta::quantized_body& q : view.value) decoded_.push_back(protocol::delta::dequantize(q));
+        bodies = decoded_;
+    }
+    m.bodies_in_view.add(static_cast<double>(bodies.size()));
+    m.view_bodies += bodies.size();
+
+    // Bodies come in increasing id order: a binary search, not a scan of every body.
+    const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
+                                     [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
+    const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
+    const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
+    if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {
+        return end(end_kind::protocol_error, c.problem == predictor::ack_problem::went_back
+                                                 ? "Snapshot: ack_sequence went back"
+                                                 : "Snapshot: ack_sequence acknowledges an input never sent");
+    }
+    if (c.problem == predictor::ack_problem::none) last_ack_ = snapshot.ack_sequence;
+    if (!outcome_.misbehaving) {
+        if (c.error) {
+            m.prediction_error_m.add(*c.error);
+            if (*c.error == 0.0f) ++m.predictions_exact;
+            m.interval_prediction_error_m.add(*c.error);
+        }
+        m.input_lag_ticks.add(static_cast<double>(predictor_->last_sequence() - snapshot.ack_sequence));
+    }
+    behavior_->observe(bodies, entity_id_);
+}
+
+void client_core::on_pong(const protocol::Message& message, time_ns now) {
+    const auto pong = protocol::decode_pong(message);
+    if (!pong) return end(end_kind::protocol_error, "Pong: " + pong.error);
+    // client_time is ours, echoed; a value from the future is not one we sent.
+    if (outcome_.misbehaving || pong.value.client_time > now) return;
+    const double rtt_ms = static_cast<double>(now - pong.value.client_time) / 1e6;
+    shared_.metrics().rtt_ms.add(rtt_ms);
+    shared_.metrics().interval_rtt_ms.add(rtt_ms);
+}
+
+void client_core::on_reject(const protocol::Message& message) {
+    const auto reject = protocol::decode_reject(message);
+    if (!reject) return end(end_kind::protocol_error, "Reject: " + reject.error);
+    const std::string text = reject_text(reject.value);
+    ++shared_.metrics().rejects[text];
+    outcome_.server_goodbye = reject.value.code == protocol::RejectCode::shutting_down;
+    end(end_kind::by_server, "Reject " + text);
+}
+
+void client_core::on_bye(const protocol::Message& message) {
+    const auto bye = protocol::decode_bye(message);
+    if (!bye) return end(end_kind::protocol_error, "Bye: " + bye.error);
+    // An orderly goodbye (the server's match is over, or it is stopping), not a fault.
+    outcome_.server_goodbye = true;
+    end(end_kind::by_server, "Bye: " + bye.value.reason);
+}
+
+void client_core::on_tick(std::uint64_t tick, time_ns now) {
+    if (phase_ != phase::playing || close_after_flush_) return;
+    ++ticks_played_;
+    if (params_.mode != misbehavior::none && ticks_played_ > misbehave_after_ticks && misbehave()) return;
+    send_input(behavior_->next({predictor_->body()}));
+    if (phase_ == phase::ended) return;
+    // One Ping a second, cores spread over the second so the Pongs do not come in a burst.
+    if ((tick + params_.index) % tick_rate_ == 0) append_ping(shared_.encoder(), now, pending_);
+}
+
+void client_core::send_input(const world::player_input& input) {
+    const std::uint32_t sequence = predictor_->last_sequence() + 1;
+    // A NaN input goes to the predictor too (the world skips inputs that fail check_input),
+    // so that sequences stay consecutive.
+    predictor_->on_input(sequence, input);
+    const std::uint32_t snapshot_ack = deltas_ ? deltas_->ack() : 0;
+    append_input(shared_.encoder(), {sequence, input.thrust, input.turn, input.buttons, snapshot_ack}, pending_);
+    ++shared_.metrics().inputs_sent;
+    if (pending_.size() > max_pending_bytes) end(end_kind::transport_error, "server stopped reading our inputs");
+}
+
+bool client_core::misbehave() {
+    switch (params_.mode) {
+        case misbehavior::none:
+        case misbehavior::slow_reader:  // the transport does it: reading() turns false
+            return false;
+        case misbehavior::flood:
+            for (std::uint32_t i = 0; i < flood_inputs_per_tick && phase_ != phase::ended; ++i)
+                send_input(behavior_->next({predictor_->body()}));
+            return true;
+        case misbehavior::garbage:
+        case misbehavior::oversize:
+        case misbehavior::nan:
+        case misbehavior::abrupt_close:
+            break;
+    }
+    if (fault_done_) return false;  // done once; play on until the server hangs up
+    fault_done_ = true;
+    switch (params_.mode) {
+        case misbehavior::garbage:
+            queue(garbage_frame(fault_rng_));
+            return false;
+        case misbehavior::oversize:
+            queue(oversize_prefix());
+            return false;
+        case misbehavior::nan:
+            send_input({std::numeric_limits<float>::quiet_NaN(), 0.0f, 0});
+            return true;
+        case misbehavior::abrupt_close: {
+            const std::uint32_t sequence = predictor_->last_sequence() + 1;
+            queue(half_frame(protocol::encode_input({sequence, 0.5f, 0.0f, 0})));
+            close_after_flush_ = true;
+            close_reason_ = "closed mid-frame on purpose (abrupt-close)";
+            return true;
+        }
+        default:
+            return false;
+    }
+}
+
+void client_core::finish() {
+    if (phase_ == phase::ended) return;
+    if (phase_ != phase::playing)
+        return end(end_kind::orderly,
+                   phase_ == phase::joining ? "no Welcome before the run ended" : "not connected before the run ended");
+    if (close_after_flush_) return;
+    queue(protocol::encode_bye("run finished"));
+    close_after_flush_ = true;
+    close_reason_ = "run finished";
+}
+
+void client_core::check_join_timeout(time_ns now) {
+    if (phase_ != phase::connecting && phase_ != phase::joining) return;
+    if (now - launched_at_ < params_.join_timeout) return;
+    end(end_kind::transport_error, phase_ == phase::connecting ? "connect timed out" : "no Welcome in time");
+}
+
+void client_core::end(end_kind kind, const std::string& reason) {
+    if (phase_ == phase::ended) return;
+    const bool was_playing = phase_ == phase::playing;
+    phase_ = phase::ended;
+    outcome_.ended = true;
+    outcome_.reason = reason;
+    outcome_.ended_early = !shared_.stopping();
+    if (kind == end_kind::protocol_error) outcome_.protocol_error = true;
+    if (outcome_.ended_early) ++shared_.metrics().disconnects[reason];
+    shared_.on_ended(was_playing);
+}
+
+void client_core::add_final_figures(fleet_metrics& m) const {
+    if (outcome_.misbehaving || snapshots_ < 2) return;
+    const double seconds = static_cast<double>(last_snapshot_at_ - first_snapshot_at_) / 1e9;
+    if (seconds > 0) m.snapshots_per_s_per_bot.add(static_cast<double>(snapshots_ - 1) / seconds);
+}
+
+}  // namespace arena::bots
