@@ -2,17 +2,36 @@
 #include <cstdio>
 #include <variant>
 
+#include "protocol/player_name.hpp"
 #include "server/auth/join_token.hpp"
+#include "server/cli/bounds.hpp"
 #include "server/cli_helpers.hpp"
+
+namespace {
+
+// A year: tokens travel in clear (SECURITY.md) and should live minutes to hours. The bound
+// also keeps now + ttl far from int64's end, where it wrapped into an expired token.
+constexpr arena::cli::number_bound ttl_bound{0, 365 * 86400, true, "s"};
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"arena-token: mint a signed join token", "arena-token"};
     std::string secret_path, name;
     int64_t ttl = 3600;
     app.add_option("--secret", secret_path, "the server's secret file (at least 32 bytes)")->required();
-    app.add_option("--name", name, "the player the token names")->required();
-    app.add_option("--ttl", ttl, "seconds until the token expires (default 3600)")->check(CLI::PositiveNumber);
+    app.add_option("--name", name,
+                   "the player the token names: at most 64 bytes of UTF-8 without control characters, as the server "
+                   "requires")
+        ->required();
+    app.add_option("--ttl", ttl, "seconds until the token expires (default 3600)")
+        ->check(arena::cli::bounded(ttl_bound));
     if (int code = arena::cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    // A token for a name the server refuses would only fail later, at the player's Hello.
+    if (auto problem = arena::protocol::player_name_problem(name)) {
+        std::fprintf(stderr, "arena-token: --name: %s\n", problem->c_str());
+        return 2;
+    }
     auto secret = arena::auth::token_secret::load(secret_path);
     if (auto* e = std::get_if<arena::auth::token_error>(&secret)) {
         std::fprintf(stderr, "arena-token: %s\n", e->reason.c_str());

@@ -1,10 +1,12 @@
 // arena-server: the authoritative game server. Wiring only: flags, the world config, the
 // server, signals.
 #include <boost/asio.hpp>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <variant>
 
+#include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
 #include "server/net/log.hpp"
@@ -79,7 +81,9 @@ int main(int argc, char** argv) {
     double drain_grace_s = 1;
     app.add_option("--drain-grace", drain_grace_s, "seconds clients get to read their Bye at shutdown (default 1)")
         ->check(cli::finite_non_negative);
+    cli::bound_server_flags(app);  // upper bounds: no seconds overflow into the past
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    std::signal(SIGPIPE, SIG_IGN);  // a log reader that went away (`| head`) must not kill the match
     if (auto error = ops::apply_agones_environment(ops_options, std::getenv("AGONES_SDK_HTTP_PORT")); !error.empty()) {
         std::fprintf(stderr, "arena-server: %s\n", error.c_str());
         return 2;
@@ -117,9 +121,13 @@ int main(int argc, char** argv) {
     try {
         boost::asio::io_context io(1);
         net::server server(io, options, world_config);
-        boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+        // SIGHUP (the terminal closed) shuts down in order, like SIGTERM.
+        boost::asio::signal_set signals(io, SIGINT, SIGTERM, SIGHUP);
         signals.async_wait([&](const boost::system::error_code& ec, int signo) {
-            if (!ec) server.shutdown(signo == SIGINT ? "server interrupted (SIGINT)" : "server terminated (SIGTERM)");
+            if (!ec)
+                server.shutdown(signo == SIGINT   ? "server interrupted (SIGINT)"
+                                : signo == SIGHUP ? "server hung up (SIGHUP)"
+                                                  : "server terminated (SIGTERM)");
         });
         // --record: every tick goes to the file as the session runs; finished at shutdown.
         std::optional<replay::recorder> recorder;

@@ -1,0 +1,108 @@
+// arena-server's command line and signals (server/server_main.cpp, server/cli/): every
+// numeric flag that a conversion could overflow is bounded, and SIGPIPE and SIGHUP end a match
+// in order instead of killing it.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <sstream>
+
+#include "common/run_command.hpp"
+#include "protocol/decode.hpp"
+#include "protocol/version.hpp"
+#include "server_process.hpp"
+
+using namespace arena;
+using namespace arena::test;
+using namespace std::chrono_literals;
+using protocol::Payload;
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+    return "/tmp/arena-main-test-" + std::to_string(::getpid()) + "-" + name;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// arena-server with `args`, bounded in time whatever it does with them.
+command_result server_run(const std::string& args) {
+    return run_command("timeout 20 " + program("arena-server") + " --port 0 " + args + " 2>&1");
+}
+
+}  // namespace
+
+TEST_CASE("arena-server refuses numeric flags that would overflow, naming the flag", "[net][cli]") {
+    // Each of these was accepted and then wrapped: --stall-timeout 1e10 dropped every client,
+    // --handshake-timeout 1e10 refused every connection, --duration 1e10 ended the match at
+    // tick 0, --reconnect-grace 71582789 became 44 ticks.
+    const std::pair<const char*, const char*> cases[] = {
+        {"--stall-timeout", "1e10"}, {"--handshake-timeout", "1e10"},
+        {"--duration", "1e10"},      {"--reconnect-grace", "71582789"},
+        {"--drain-grace", "1e10"},   {"--stats-interval", "1e300"},
+        {"--view-radius", "1e300"},  {"--agones-shutdown-timeout", "1e10"},
+        {"--stall-timeout", "inf"},  {"--duration", "nan"},
+        {"--reconnect-grace", "-1"},
+    };
+    for (const auto& [flag, value] : cases) {
+        INFO(flag << " " << value);
+        // --duration 0.2: should the flag be accepted, the server stops by itself.
+        const std::string duration = std::string(flag) == "--duration" ? "" : " --duration 0.2";
+        const auto r = server_run(std::string(flag) + " " + value + duration);
+        CHECK(r.exit_code == 2);
+        CHECK(r.output.rfind(std::string("arena-server: ") + flag + ": ", 0) == 0);
+        CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    }
+}
+
+TEST_CASE("arena-server takes its flags at their upper bounds without wrapping", "[net][cli]") {
+    const std::string stats = temp_path("bounds-stats.json");
+    const auto r = server_run(
+        "--stall-timeout 3600 --handshake-timeout 3600 --reconnect-grace 3600 --drain-grace 60 "
+        "--view-radius 1e7 --duration 0.3 --stats-json " +
+        stats);
+    CHECK(r.exit_code == 0);
+    const std::string text = read_file(stats);
+    CHECK(text.find("\"stall_timeout_s\": 3600.0") != std::string::npos);
+    CHECK(text.find("\"handshake_timeout_s\": 3600.0") != std::string::npos);
+    std::remove(stats.c_str());
+}
+
+TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
+    const std::string stats = temp_path("hup-stats.json"), recording = temp_path("hup.arpl");
+    server_process server({"--stats-json", stats, "--record", recording});
+    test_client client(server.port());
+    client.send_frame(protocol::encode_hello(protocol::protocol_version, "hup", ""));
+    REQUIRE(client.read_until(Payload::Welcome));
+    REQUIRE(client.read_until(Payload::Snapshot));
+    ::kill(server.pid(), SIGHUP);
+    auto bye = client.read_until(Payload::Bye);
+    REQUIRE(bye);
+    CHECK(protocol::decode_bye(*message_of(*bye)).value.reason.find("SIGHUP") != std::string::npos);
+    CHECK(server.stop(0) == 0);
+    CHECK(read_file(stats).find("\"joins\": 1") != std::string::npos);
+    const auto replayed = run_command(program("arena-replay") + " " + recording + " 2>&1");
+    INFO(replayed.output);
+    CHECK(replayed.exit_code == 0);
+    std::remove(stats.c_str());
+    std::remove(recording.c_str());
+}
+
+TEST_CASE("a log reader that goes away (SIGPIPE) does not kill the server", "[net][e2e][signal]") {
+    // `arena-server ... 2>&1 | head -2`: once head exits, every log line is a write to a
+    // closed pipe. The server's own exit status comes back through PIPESTATUS.
+    const std::string stats = temp_path("pipe-stats.json");
+    const auto r = run_command("bash -c 'timeout 20 " + program("arena-server") +
+                               " --port 0 --duration 1 --stats-interval 0.05 --stats-json " + stats +
+                               " 2>&1 | head -2 >/dev/null; echo \"${PIPESTATUS[0]}\"'");
+    CHECK(r.output == "0\n");
+    CHECK(read_file(stats).find("\"ticks\"") != std::string::npos);
+    std::remove(stats.c_str());
+}
