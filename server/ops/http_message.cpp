@@ -12,17 +12,4 @@ int parse_response_status(std::string_view response) {
     return status;
 }
 
-std::string format_post(std::string_view host, uint16_t port, std::string_view path, std::string_view json_body) {
-    std::string out;
-    out.append("POST ")
-        .append(path)
-        .append(" HTTP/1.1\r\nHost: ")
-        .append(host)
-        .append(":")
-        .append(std::to_string(port));
-    out.append("\r\nContent-Type: application/json\r\nContent-Length: ").append(std::to_string(json_body.size()));
-    out.append("\r\nConnection: close\r\n\r\n").append(json_body);
-    return out;
-}
-
 }  // namespace arena::ops

@@ -8,7 +8,13 @@
 #include <future>
 #include <mutex>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include "server/ops/agones.hpp"
+#include "server/ops/http_client.hpp"
 #include "server/ops/ops_flags.hpp"
 #include "tests/ops/loopback.hpp"
 
@@ -207,4 +213,80 @@ TEST_CASE("ops Agones flags: AGONES_SDK_HTTP_PORT turns it on unless --agones-po
 
     ops_options bad;
     CHECK_FALSE(parse({}, "nine", bad).empty());
+}
+
+TEST_CASE("ops http client: a sidecar that takes the connection and never answers times out", "[ops][agones]") {
+    // A listening socket that nobody accepts from: the kernel completes the handshake, then silence.
+    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof addr;
+    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+    REQUIRE(listen(fd, 4) == 0);
+    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+
+    boost::asio::io_context io;
+    http_result result;
+    const auto asked = clock_type::now();
+    boost::asio::co_spawn(io,
+                          http_post(io.get_executor(), "127.0.0.1", ntohs(addr.sin_port), "/ready", "{}", 300'000'000),
+                          [&](std::exception_ptr, http_result r) { result = r; });
+    io.run();
+    const double waited = ms_between(asked, clock_type::now());
+    close(fd);
+    CHECK(result.status == 0);
+    CHECK(result.error == "timed out");
+    CHECK(waited > 250);
+    CHECK(waited < 1500);
+}
+
+TEST_CASE("ops http client: the status of a response is read, a malformed one is no status", "[ops][agones]") {
+    fake_sidecar sidecar;
+    sidecar.set_status(503);
+    // The fake listens from its own thread: one request, no retries, so wait for it.
+    const auto deadline = clock_type::now() + 2s;
+    while (sidecar.listening_since() == clock_type::time_point{} && clock_type::now() < deadline)
+        std::this_thread::sleep_for(5ms);
+    // A server that answers with something other than HTTP.
+    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof addr;
+    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+    REQUIRE(listen(fd, 4) == 0);
+    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+    std::thread not_http([fd] {
+        const int peer = accept(fd, nullptr, nullptr);
+        const std::string banner = "SSH-2.0-OpenSSH_9.2\r\n\r\n";
+        send(peer, banner.data(), banner.size(), MSG_NOSIGNAL);
+        close(peer);
+    });
+
+    boost::asio::io_context io;
+    http_result post, get, bad_address;
+    auto keep = [](http_result& out) {
+        return [&out](std::exception_ptr, http_result r) {
+            out = r;
+        };
+    };
+    boost::asio::co_spawn(io, http_post(io.get_executor(), "127.0.0.1", sidecar.port(), "/health", "{}", 1'000'000'000),
+                          keep(post));
+    boost::asio::co_spawn(io, http_get(io.get_executor(), "127.0.0.1", ntohs(addr.sin_port), "/healthz", 1'000'000'000),
+                          keep(get));
+    boost::asio::co_spawn(io, http_get(io.get_executor(), "not-an-ip", sidecar.port(), "/", 1'000'000'000),
+                          keep(bad_address));
+    io.run();
+    not_http.join();
+    close(fd);
+    CHECK(post.status == 503);
+    CHECK_FALSE(post.ok());
+    CHECK(get.status == 0);
+    CHECK_FALSE(get.error.empty());
+    CHECK(bad_address.status == 0);
+    CHECK(bad_address.error == "bad address not-an-ip");
+    REQUIRE(sidecar.wait_until(count_of("/health", 1), 1s));
+    CHECK(sidecar.calls().front().method == "POST");
+    CHECK(sidecar.calls().front().body == "{}");
 }
