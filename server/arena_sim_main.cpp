@@ -18,6 +18,8 @@ using namespace arena;
 
 namespace {
 
+constexpr uint32_t max_plot_steps = 1000;
+
 int run_single_body(const sim::single_body_scenario& s) {
     std::printf("t,x,y,vx,vy,angle,omega\n");
     for (const sim::sample& r : sim::run_scenario(s))
@@ -27,6 +29,12 @@ int run_single_body(const sim::single_body_scenario& s) {
 
 int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, uint32_t steps, uint64_t seed) {
     if (bodies_given) {
+        // Every rock is a body: beyond max_bodies the world would only stop spawning.
+        if (bodies > config.max_bodies) {
+            std::fprintf(stderr, "arena-sim: --bodies: at most %u (the world's max_bodies), got %u\n",
+                         config.max_bodies, bodies);
+            return 2;
+        }
         // Keep the preset's crowding: the world grows with the square root of the rock count.
         if (config.rocks.count > 0 && bodies > config.rocks.count) {
             const float scale = std::sqrt(static_cast<float>(bodies) / static_cast<float>(config.rocks.count));
@@ -145,6 +153,12 @@ int main(int argc, char** argv) {
     }
     if (auto problem = sim::check_scenario(s)) {
         std::fprintf(stderr, "arena-sim: %s\n", problem->c_str());
+        return 2;
+    }
+    // The plot's reference run takes 1000 times as many steps as asked for.
+    if (!plot.empty() && s.steps > max_plot_steps) {
+        std::fprintf(stderr, "arena-sim: --plot: at most %u steps (the reference runs 1000 times as many), got %u\n",
+                     max_plot_steps, s.steps);
         return 2;
     }
     if (!plot.empty()) return write_plot(s, plot);

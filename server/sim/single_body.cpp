@@ -11,6 +11,9 @@ using world::vec2;
 
 std::optional<std::string> check_scenario(const single_body_scenario& s) {
     if (!(s.dt > 0)) return "--dt must be positive";
+    if (s.steps > max_scenario_steps)
+        return "--steps must be at most " + std::to_string(max_scenario_steps) +
+               " for one body (one row per step), got " + std::to_string(s.steps);
     if (!(s.mass > 0)) return "--mass must be positive";
     if (s.friction < 0 || s.density < 0 || s.drag_coefficient < 0 || s.area < 0)
         return "--friction, --density, --drag-coefficient and --area must not be negative";

@@ -28,6 +28,10 @@ struct sample {
     world::real t, x, y, vx, vy, angle, omega;
 };
 
+// Most steps of one scenario: every step is a row kept in memory and printed (4e9 steps
+// asked for 112 GB and aborted on bad_alloc). A million rows is hours of simulated time.
+inline constexpr uint32_t max_scenario_steps = 1'000'000;
+
 // Why the scenario cannot run as asked, or nothing.
 std::optional<std::string> check_scenario(const single_body_scenario& s);
 

@@ -174,7 +174,8 @@ void world::spawn_rocks() {
         }
         return true;
     };
-    for (uint32_t i = 0; i < rocks.count && bodies_.size() < config_.max_bodies; ++i) {
+    // max_bodies counts the rocks placed so far, which join bodies_ only after the loop.
+    for (uint32_t i = 0; i < rocks.count && bodies_.size() + placed.size() < config_.max_bodies; ++i) {
         body_material material = rocks.material;
         material.radius = rng_.uniform(rocks.min_radius, rocks.max_radius);
         body b = make_body(material, random_free_position(material.radius, is_free));

@@ -97,3 +97,27 @@ TEST_CASE("the exact solution is known only for constant acceleration", "[sim]")
     s.friction = 0.1f;
     CHECK_FALSE(arena::sim::exact_solution(s, 10));
 }
+
+TEST_CASE("arena-sim refuses sizes it cannot hold with a usage error, not bad_alloc", "[sim][limits]") {
+    // Each of these aborted with std::bad_alloc (exit 134) before.
+    const run_result bodies = run("--preset asteroids --bodies 100000000 --steps 1");
+    CHECK(bodies.status == 2);
+    CHECK(bodies.out == "arena-sim: --bodies: at most 1048576 (the world's max_bodies), got 100000000\n");
+    const run_result steps = run("--steps 4000000000");
+    CHECK(steps.status == 2);
+    CHECK(steps.out == "arena-sim: --steps must be at most 1000000 for one body (one row per step), got 4000000000\n");
+    const run_result plot = run("--steps 5000 --plot /tmp/arena-sim-never-written.svg");
+    CHECK(plot.status == 2);
+    CHECK(plot.out.find("--plot: at most 1000 steps") != std::string::npos);
+    // At the bounds they run.
+    CHECK(run("--dt 0.001 --steps 1000000 > /dev/null").status == 0);
+}
+
+TEST_CASE("arena-sim --bodies is honoured up to max_bodies, and max_bodies limits a config's rocks", "[sim][limits]") {
+    const std::string path = "/tmp/arena-sim-test-max-bodies.json";
+    std::ofstream(path) << R"({"max_bodies": 10, "rocks": {"count": 100}})";
+    const run_result r = run("--config " + path + " --steps 1");
+    CHECK(r.status == 0);
+    CHECK(r.out.rfind("bodies=10 steps=1\n", 0) == 0);
+    std::remove(path.c_str());
+}
