@@ -4,6 +4,12 @@
 #include <atomic>
 #include <cstdlib>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "common/run_command.hpp"
 #include "server/ops/http_routes.hpp"
 #include "server/ops/http_server.hpp"
 #include "server/ops/metrics.hpp"
@@ -146,4 +152,42 @@ TEST_CASE("ops http: arena-healthcheck exits 0 on 200 and 1 on 503 or no server"
                                "/arena-healthcheck http://127.0.0.1:" + std::to_string(arena::test::free_port()) +
                                "/healthz --timeout 1 >/dev/null";
     CHECK(WEXITSTATUS(std::system(nobody.c_str())) == 1);
+}
+
+TEST_CASE("ops http: arena-healthcheck prints what it got, exits 2 on usage errors and 1 on a silent server",
+          "[ops][http]") {
+    using arena::test::program;
+    using arena::test::run_command;
+    endpoint_fixture f;
+    const std::string url = "http://127.0.0.1:" + std::to_string(f.server.port()) + "/healthz";
+    const auto ok = run_command(program("arena-healthcheck") + " " + url);
+    CHECK(ok.exit_code == 0);
+    CHECK(ok.output == "127.0.0.1:" + std::to_string(f.server.port()) + "/healthz -> 200\n");
+    CHECK(run_command(program("arena-healthcheck") + " " + url + " --help").exit_code == 0);
+    CHECK(run_command(program("arena-healthcheck") + " " + url + " --timeout 0 2>&1").exit_code == 2);
+    CHECK(run_command(program("arena-healthcheck") + " " + url + " --timeout nan 2>&1").exit_code == 2);
+    CHECK(run_command(program("arena-healthcheck") + " " + url + " --bogus 2>&1").exit_code == 2);
+    CHECK(run_command(program("arena-healthcheck") + " ftp://127.0.0.1:1/ 2>&1").exit_code == 2);
+    CHECK(run_command(program("arena-healthcheck") + " http://127.0.0.1:0/ 2>&1").exit_code == 2);
+    CHECK(run_command(program("arena-healthcheck") + " http://localhost:80/ 2>&1").exit_code == 1);
+
+    // Takes the connection and never answers: the probe gives up at its timeout.
+    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof addr;
+    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+    REQUIRE(listen(fd, 4) == 0);
+    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+    const auto start = std::chrono::steady_clock::now();
+    const auto silent =
+        run_command(program("arena-healthcheck") + " http://127.0.0.1:" + std::to_string(ntohs(addr.sin_port)) +
+                    "/healthz --timeout 0.3");
+    const auto waited = std::chrono::steady_clock::now() - start;
+    close(fd);
+    CHECK(silent.exit_code == 1);
+    CHECK(silent.output.find("-> 0") != std::string::npos);
+    CHECK(waited >= std::chrono::milliseconds(250));
+    CHECK(waited < std::chrono::milliseconds(2000));
 }
