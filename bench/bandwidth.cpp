@@ -11,8 +11,7 @@
 #include "protocol/decode.hpp"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/verify.hpp"
-#include "server/net/game.hpp"
-#include "server/net/log.hpp"
+#include "server/match/match.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
 
@@ -22,7 +21,7 @@ namespace {
 
 // A client at the end of a 100 ms round trip: it decodes what it receives (so every delta is
 // proven decodable) and acknowledges a snapshot 6 ticks after it arrived.
-struct measuring_client : net::participant {
+struct measuring_client : match::connection {
     static constexpr uint32_t ack_delay_ticks = 6;
     explicit measuring_client(bool delta) : delta(delta) {}
 
@@ -30,8 +29,9 @@ struct measuring_client : net::participant {
     // Kept, and read after the tick: the server's time is measured without the clients'.
     void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override { s.copy_with_ack(ack, pending); }
     void send_snapshot_frame(std::span<const uint8_t> frame) override { pending.assign(frame.begin(), frame.end()); }
-    void reject(protocol::RejectCode, std::string_view) override {}
-    void say_bye(std::string_view) override {}
+    void close(protocol::RejectCode, std::string_view) override {}
+    void close_with_bye(std::string_view) override {}
+    std::string_view peer() const override { return "bench"; }
 
     void receive_pending() {
         if (pending.empty()) return;
@@ -83,14 +83,13 @@ struct measuring_client : net::participant {
 }  // namespace
 
 void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t ticks) {
-    net::game_config config;
+    match::match_config config;
     config.tick_rate = 60;
     config.snapshot_rate = 20;
     config.max_players = players;
     config.view_radius = view_radius;
     config.seed = 7;
-    net::set_logging(false);
-    net::game g(config, world::asteroids_preset());
+    match::match g(config, world::asteroids_preset());
     std::vector<std::unique_ptr<measuring_client>> clients;
     std::vector<uint32_t> ids;
     for (uint32_t i = 0; i < players; ++i) {

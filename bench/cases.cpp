@@ -9,11 +9,11 @@
 
 #include "bench/timing.hpp"
 #include "protocol/snapshot.hpp"
-#include "server/net/body_state.hpp"
+#include "server/match/body_state.hpp"
+#include "server/match/tick_record.hpp"
 #include "server/replay/header.hpp"
 #include "server/replay/recorder.hpp"
 #include "server/replay/replayer.hpp"
-#include "server/replay/tick_record.hpp"
 #include "server/world/integrate.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
@@ -107,7 +107,7 @@ void bench_snapshot(uint32_t bodies, uint32_t clients, int samples) {
     // As snapshot_fanout::shared_frame does it: world bodies → BodyState, then one build.
     auto build = [&] {
         states.clear();
-        for (const world::body& b : w.bodies()) states.push_back(net::body_state(b));
+        for (const world::body& b : w.bodies()) states.push_back(match::body_state(b));
         encoder.build(w.tick(), states);
     };
     const stats sb = time_samples(10, samples, build);
@@ -143,7 +143,7 @@ bool bench_replay(uint32_t players, uint32_t ticks, const std::string& path) {
         std::vector<uint32_t> body_of;  // by player
         std::vector<world::player_input> stick(players);
         for (uint32_t k = 0; k < ticks; ++k) {
-            replay::tick_record record;
+            match::tick_record record;
             record.tick = w.tick();
             if (k == 0)
                 for (uint32_t p = 1; p <= players; ++p) record.joins.push_back(p);
@@ -158,7 +158,7 @@ bool bench_replay(uint32_t players, uint32_t ticks, const std::string& path) {
                 in.buttons = script.next_u64() % 40 == 0 ? world::button_impulse : 0;
                 record.inputs.push_back({body_of[p], in});
             }
-            const auto spawned = replay::apply_tick(w, record);
+            const auto spawned = match::apply_tick(w, record);
             body_of.insert(body_of.end(), spawned.begin(), spawned.end());
             if (auto s = rec.record_tick(record, w.hash()); !s) {
                 std::fprintf(stderr, "arena-bench: %s\n", s.error.c_str());

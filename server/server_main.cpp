@@ -25,23 +25,23 @@ int main(int argc, char** argv) {
     double handshake_s = 5, stall_s = 5;
     app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
     app.add_option("--port", options.port, "TCP port (default 7777; 0 picks a free one)");
-    app.add_option("--tick-rate", options.game.tick_rate, "world steps per second (default 60)")
+    app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--snapshot-rate", options.game.snapshot_rate, "snapshots per second (default 20)")
+    app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--max-players", options.game.max_players, "players at once (default 64)")
+    app.add_option("--max-players", options.match.max_players, "players at once (default 64)")
         ->check(CLI::Range(1, 100000));
     app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
-    app.add_option("--seed", options.game.seed, "world seed (default 1)");
+    app.add_option("--seed", options.match.seed, "world seed (default 1)");
     app.add_option("--record", record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s,
                    "run this many seconds, then shut down cleanly (default: until a signal)")
         ->check(cli::finite_non_negative);
     app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
-    app.add_option("--input-buffer", options.game.input_buffer, "inputs buffered per player (default 8)")
+    app.add_option("--input-buffer", options.match.input_buffer, "inputs buffered per player (default 8)")
         ->check(CLI::Range(1, 1024));
-    app.add_option("--max-inputs-per-second", options.game.max_inputs_per_second,
+    app.add_option("--max-inputs-per-second", options.match.max_inputs_per_second,
                    "inputs per second before a client is dropped (default 2 x tick rate + 10)");
     app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
@@ -62,17 +62,17 @@ int main(int argc, char** argv) {
     std::string token_secret_path;
     app.add_option("--token-secret", token_secret_path,
                    "admit only Hellos with a token signed with this secret file (see arena-token)");
-    app.add_option("--reconnect-grace", options.game.reconnect_grace_s,
+    app.add_option("--reconnect-grace", options.match.reconnect_grace_s,
                    "seconds a dropped player's body waits for it to come back with the same token (default 10)")
         ->check(cli::finite_non_negative);
     // Interest management is on by default: 100 m is a quarter of the asteroids world's side,
     // a generous screen. 0 sends every body to every client.
-    options.game.view_radius = 100;
-    app.add_option("--view-radius", options.game.view_radius,
+    options.match.view_radius = 100;
+    app.add_option("--view-radius", options.match.view_radius,
                    "m: each client's snapshots hold its body and the bodies this near it; 0 = the whole world")
         ->check(cli::finite_non_negative)
         ->capture_default_str();
-    app.add_option("--delta-history", options.game.delta_history,
+    app.add_option("--delta-history", options.match.delta_history,
                    "snapshots kept per client as delta baselines; older acks get a full view")
         ->check(CLI::Range(1u, 1024u))
         ->capture_default_str();
@@ -109,10 +109,10 @@ int main(int argc, char** argv) {
             return 2;
         }
         world_config = std::get<world::world_config>(loaded);
-        options.game.preset = "";
+        options.match.preset = "";
     } else if (auto p = world::preset_by_name(preset)) {
         world_config = *p;
-        options.game.preset = preset;
+        options.match.preset = preset;
     } else {
         std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
         return 2;
@@ -134,14 +134,15 @@ int main(int argc, char** argv) {
         bool recording_failed = false;
         if (!record.empty()) {
             const world::world& w = server.match().state();
-            auto opened = replay::recorder::open(record, replay::make_header(w, options.game.preset, options.game.seed,
-                                                                             options.game.tick_rate, hash_interval));
+            auto opened =
+                replay::recorder::open(record, replay::make_header(w, options.match.preset, options.match.seed,
+                                                                   options.match.tick_rate, hash_interval));
             if (!opened) {
                 std::fprintf(stderr, "arena-server: --record: %s\n", opened.error.c_str());
                 return 2;
             }
             recorder.emplace(std::move(opened.value));
-            server.match().on_tick = [&](const replay::tick_record& r, uint64_t hash) {
+            server.match().on_tick = [&](const match::tick_record& r, uint64_t hash) {
                 if (auto s = recorder->record_tick(r, hash); !s && !recording_failed) {
                     net::log_line("recording failed, the session goes on unrecorded: %s", s.error.c_str());
                     recording_failed = true;

@@ -6,15 +6,13 @@ namespace arena::net {
 
 namespace {
 const auto process_start = std::chrono::steady_clock::now();
-bool logging = true;
 }  // namespace
 
-void set_logging(bool enabled) {
-    logging = enabled;
+match::logger server_logger() {
+    return match::logger([](std::string_view line) { log_line("%.*s", static_cast<int>(line.size()), line.data()); });
 }
 
 void log_line(const char* format, ...) {
-    if (!logging) return;
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - process_start).count();
     char line[1024];
     va_list args;

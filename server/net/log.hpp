@@ -4,6 +4,8 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include "server/match/logger.hpp"
+
 namespace arena::net {
 
 #if defined(__GNUC__)
@@ -11,7 +13,7 @@ __attribute__((format(printf, 1, 2)))
 #endif
 void log_line(const char* format, ...);
 
-// Turns log lines off (fuzz targets, which would otherwise print millions).
-void set_logging(bool enabled);
+// A logger for the match that writes through log_line.
+match::logger server_logger();
 
 }  // namespace arena::net

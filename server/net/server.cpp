@@ -43,12 +43,12 @@ nlohmann::json process_figures() {
 server::server(boost::asio::io_context& io, const server_options& options, const world::world_config& world_config)
     : io_(io),
       options_(options),
-      game_(options.game, world_config),
+      match_(options.match, world_config, server_logger()),
       acceptor_(io),
-      clock_(1'000'000'000LL / options.game.tick_rate, options.max_catch_up),
+      clock_(1'000'000'000LL / options.match.tick_rate, options.max_catch_up),
       tick_timer_(io),
       stop_timer_(io) {
-    if (options_.max_connections == 0) options_.max_connections = 2 * options_.game.max_players + 16;
+    if (options_.max_connections == 0) options_.max_connections = 2 * options_.match.max_players + 16;
 }
 
 int64_t server::now_ns() const {
@@ -64,8 +64,8 @@ void server::start() {
     port_ = acceptor_.local_endpoint().port();
     std::printf("listening on %s:%u\n", options_.bind.c_str(), port_);
     std::fflush(stdout);
-    log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.game.tick_rate,
-             options_.game.snapshot_rate, options_.game.max_players, game_.state().bodies().size());
+    log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.match.tick_rate,
+             options_.match.snapshot_rate, options_.match.max_players, match_.state().bodies().size());
     started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
     boost::asio::co_spawn(io_, accept_loop(), boost::asio::detached);
     boost::asio::co_spawn(io_, tick_loop(), boost::asio::detached);
@@ -92,9 +92,9 @@ boost::asio::awaitable<void> server::accept_loop() {
         s->start();
         // Limits are checked after start() so that the refused client reads why.
         if (sessions_.size() > options_.max_connections)
-            s->reject(protocol::RejectCode::server_full, "too many connections");
+            s->close(protocol::RejectCode::server_full, "too many connections");
         else if (pending_handshakes() > options_.max_pending_handshakes)
-            s->reject(protocol::RejectCode::server_full, "too many connections waiting to say Hello");
+            s->close(protocol::RejectCode::server_full, "too many connections waiting to say Hello");
     }
 }
 
@@ -114,7 +114,7 @@ void server::run_due_ticks() {
     const uint32_t due = clock_.advance(now_ns());
     for (uint32_t i = 0; i < due; ++i) {
         const int64_t begin = now_ns();
-        game_.tick();
+        match_.tick();
         const int64_t spent = now_ns() - begin;
         run_ticks_.add(spent);
         window_ticks_.add(spent);
@@ -131,7 +131,7 @@ void server::check_stalled_sessions(int64_t now) {
     std::vector<std::shared_ptr<session>> stalled;
     for (auto& [id, s] : sessions_)
         if (!s->closing() && s->stalled_ns(now) > options_.stall_timeout_ns) stalled.push_back(s);
-    for (auto& s : stalled) s->reject(protocol::RejectCode::slow_consumer, "no progress writing to the client");
+    for (auto& s : stalled) s->close(protocol::RejectCode::slow_consumer, "no progress writing to the client");
 }
 
 void server::log_stats(int64_t now) {
@@ -139,7 +139,7 @@ void server::log_stats(int64_t now) {
     log_line(
         "stats players=%zu ticks=%u tick_ms_p50=%.3f tick_ms_p99=%.3f tick_ms_max=%.3f overruns=%llu "
         "bytes_in_per_s=%.0f bytes_out_per_s=%.0f connections=%zu",
-        game_.player_count(), game_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
+        match_.player_count(), match_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
         ms(window_ticks_.quantile_ns(0.99)), ms(window_ticks_.max_ns()),
         static_cast<unsigned long long>(clock_.overruns()), static_cast<double>(window_traffic_.bytes_in) / seconds,
         static_cast<double>(window_traffic_.bytes_out) / seconds, sessions_.size());
@@ -149,14 +149,14 @@ void server::log_stats(int64_t now) {
 }
 
 ops::server_metrics server::metrics_snapshot() const {
-    const game_counters c = game_.counters();
+    const match::match_counters c = match_.counters();
     ops::server_metrics m;
     m.tick_duration_s = tick_seconds_;
-    m.ticks = game_.state().tick();
+    m.ticks = match_.state().tick();
     m.tick_overruns = clock_.overruns();
-    m.tick_budget_s = 1.0 / options_.game.tick_rate;
-    m.players_connected = game_.player_count();
-    m.players_max = options_.game.max_players;
+    m.tick_budget_s = 1.0 / options_.match.tick_rate;
+    m.players_connected = match_.player_count();
+    m.players_max = options_.match.max_players;
     m.connections_open = sessions_.size();
     m.joins = c.joins;
     m.leaves = c.leaves;
@@ -183,30 +183,31 @@ size_t server::pending_handshakes() const {
     return pending;
 }
 
-std::variant<uint32_t, rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
-    if (stopping_) return rejection{protocol::RejectCode::shutting_down, "the server is shutting down"};
+std::variant<uint32_t, match::rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
+    if (stopping_) return match::rejection{protocol::RejectCode::shutting_down, "the server is shutting down"};
     std::string identity = hello.token;  // an open server: the token is the client's own key
     protocol::hello_msg named = hello;
     if (options_.token_secret) {
         auto claims = options_.token_secret->verify(hello.token, auth::unix_now());
         if (auto* e = std::get_if<auth::token_error>(&claims))
-            return rejection{protocol::RejectCode::unauthorized, e->reason};
+            return match::rejection{protocol::RejectCode::unauthorized, e->reason};
         // The signed name is the player's identity, whatever name the Hello claims.
         named.name = std::get<auth::token_claims>(claims).name;
         identity = "signed:" + named.name;
     }
-    auto joined = game_.join(s, named, identity);
+    auto joined = match_.join(s, named, identity);
     if (std::holds_alternative<uint32_t>(joined))
-        log_line("hello player=%u name=%s from %s", std::get<uint32_t>(joined), hello.name.c_str(), s.peer().c_str());
+        log_line("hello player=%u name=%s from %.*s", std::get<uint32_t>(joined), hello.name.c_str(),
+                 static_cast<int>(s.peer().size()), s.peer().data());
     return joined;
 }
 
-std::optional<rejection> server::on_input(session& s, const protocol::input_msg& input) {
-    return game_.receive_input(s.player_id(), input);
+std::optional<match::rejection> server::on_input(session& s, const protocol::input_msg& input) {
+    return match_.receive_input(s.player_id(), input);
 }
 
 void server::on_closed(session& s, std::string_view reason, bool connection_lost) {
-    if (s.player_id() != 0) game_.leave(s.player_id(), s, reason, connection_lost && !stopping_);
+    if (s.player_id() != 0) match_.leave(s.player_id(), s, reason, connection_lost && !stopping_);
     ++drops_[std::string(reason.substr(0, reason.find(':')))];
 }
 
@@ -243,7 +244,7 @@ void server::shutdown(const std::string& reason) {
     // Copy: saying bye may close a session and erase it from the map.
     std::vector<std::shared_ptr<session>> all;
     for (auto& [id, s] : sessions_) all.push_back(s);
-    for (auto& s : all) s->say_bye(reason);
+    for (auto& s : all) s->close_with_bye(reason);
     if (sessions_.empty()) {
         finish();
         return;
@@ -265,12 +266,12 @@ void server::finish() {
 
 void server::write_stats_json(const std::string& path) const {
     const double seconds = static_cast<double>(now_ns() - started_ns_) / 1e9;
-    const game_counters c = game_.counters();
+    const match::match_counters c = match_.counters();
     nlohmann::json j = {
         {"duration_s", seconds},
-        {"ticks", game_.state().tick()},
-        {"tick_rate", options_.game.tick_rate},
-        {"snapshot_rate", options_.game.snapshot_rate},
+        {"ticks", match_.state().tick()},
+        {"tick_rate", options_.match.tick_rate},
+        {"snapshot_rate", options_.match.snapshot_rate},
         {"tick_ms",
          {{"p50", ms(run_ticks_.quantile_ns(0.5))},
           {"p99", ms(run_ticks_.quantile_ns(0.99))},
@@ -290,7 +291,7 @@ void server::write_stats_json(const std::string& path) const {
         {"takeovers", c.takeovers},
         {"snapshots_sent", c.snapshots_sent},
         {"snapshots",
-         {{"view_radius", options_.game.view_radius},
+         {{"view_radius", options_.match.view_radius},
           {"delta_frames", c.snapshots.delta_frames},
           {"keyframes", c.snapshots.keyframes},
           {"full_frames", c.snapshots.full_frames},
@@ -304,12 +305,12 @@ void server::write_stats_json(const std::string& path) const {
         {"bytes_out", run_traffic_.bytes_out},
         {"messages_out", run_traffic_.messages_out},
         {"limits",
-         {{"max_players", options_.game.max_players},
+         {{"max_players", options_.match.max_players},
           {"max_connections", options_.max_connections},
           {"max_pending_handshakes", options_.max_pending_handshakes},
-          {"max_inputs_per_second", options_.game.max_inputs_per_second ? options_.game.max_inputs_per_second
-                                                                        : 2u * options_.game.tick_rate + 10u},
-          {"input_buffer", options_.game.input_buffer},
+          {"max_inputs_per_second", options_.match.max_inputs_per_second ? options_.match.max_inputs_per_second
+                                                                         : 2u * options_.match.tick_rate + 10u},
+          {"input_buffer", options_.match.input_buffer},
           {"max_frame_bytes", protocol::max_client_frame_body},
           {"max_control_frames", options_.max_control_frames},
           {"socket_send_buffer", options_.socket_send_buffer},

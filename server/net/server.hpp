@@ -1,5 +1,5 @@
 #pragma once
-// The authoritative server: accepts TCP clients, runs the game at a fixed tick on one
+// The authoritative server: accepts TCP clients, runs the match at a fixed tick on one
 // io_context thread, fans snapshots out, and shuts down cleanly on a signal or at the end of
 // --duration.
 #include <boost/asio.hpp>
@@ -10,8 +10,8 @@
 #include <string>
 
 #include "server/auth/join_token.hpp"
+#include "server/match/match.hpp"
 #include "server/net/duration_histogram.hpp"
-#include "server/net/game.hpp"
 #include "server/net/tick_clock.hpp"
 #include "server/ops/histogram.hpp"
 #include "server/ops/metrics.hpp"
@@ -23,7 +23,7 @@ class session;
 struct server_options {
     std::string bind = "127.0.0.1";
     uint16_t port = 7777;  // 0: any free port
-    game_config game{};
+    match::match_config match{};
     double duration_s = 0;                         // 0: run until a signal
     std::string stats_json;                        // written at exit when set
     uint32_t max_connections = 0;                  // 0: 2 × max_players + 16
@@ -61,9 +61,9 @@ public:
     std::function<void()> on_shutdown;
 
     // From sessions.
-    std::variant<uint32_t, rejection> on_hello(session& s, const protocol::hello_msg& hello);
-    std::optional<rejection> on_input(session& s, const protocol::input_msg& input);
-    // The session began to close: its player leaves the game now, or, when the connection was
+    std::variant<uint32_t, match::rejection> on_hello(session& s, const protocol::hello_msg& hello);
+    std::optional<match::rejection> on_input(session& s, const protocol::input_msg& input);
+    // The session began to close: its player leaves the match now, or, when the connection was
     // lost, waits for a reconnection.
     void on_closed(session& s, std::string_view reason, bool connection_lost = false);
     // The session's socket is closed: it is forgotten.
@@ -76,12 +76,12 @@ public:
     bool ticking(int64_t window_ns = 1'000'000'000) const { return now_ns() - last_tick_ns_ < window_ns; }
     void count_out(size_t bytes);
     void count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason);
-    uint32_t current_tick() const { return game_.state().tick(); }
+    uint32_t current_tick() const { return match_.state().tick(); }
     const server_options& options() const { return options_; }
     int64_t now_ns() const;
     bool shutting_down() const { return stopping_; }
 
-    game& match() { return game_; }
+    match::match& match() { return match_; }
     uint16_t port() const { return port_; }
     void write_stats_json(const std::string& path) const;
 
@@ -96,7 +96,7 @@ private:
 
     boost::asio::io_context& io_;
     server_options options_;
-    game game_;
+    match::match match_;
     boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order

@@ -43,7 +43,7 @@ void session::start() {
     handshake_.expires_after(std::chrono::nanoseconds(owner_.options().handshake_timeout_ns));
     handshake_.async_wait([self](const boost::system::error_code& e) {
         if (!e && self->player_id_ == 0 && !self->closing_)
-            self->reject(RejectCode::timeout, "no Hello within the handshake timeout");
+            self->close(RejectCode::timeout, "no Hello within the handshake timeout");
     });
 }
 
@@ -65,13 +65,13 @@ boost::asio::awaitable<void> session::reader() {
                 data = data.subspan(reader_.feed(data));
                 if (reader_.failed()) {
                     const bool too_large = reader_.error().find("exceeds") != std::string_view::npos;
-                    reject(too_large ? RejectCode::too_large : RejectCode::bad_request, reader_.error());
+                    close(too_large ? RejectCode::too_large : RejectCode::bad_request, reader_.error());
                     co_return;
                 }
                 if (!reader_.has_frame()) break;  // the rest of the frame is still on its way
                 auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
                 if (!verified) {
-                    reject(RejectCode::bad_request, "frame failed verification: " + verified.error);
+                    close(RejectCode::bad_request, "frame failed verification: " + verified.error);
                     co_return;
                 }
                 owner_.count_message_in();
@@ -96,17 +96,17 @@ bool session::dispatch(const protocol::Message& message) {
     switch (message.payload_type()) {
         case Payload::Hello: {
             if (player_id_ != 0) {
-                reject(RejectCode::bad_request, "a second Hello");
+                close(RejectCode::bad_request, "a second Hello");
                 return false;
             }
             auto hello = protocol::decode_hello(message);
             if (!hello) {
-                reject(RejectCode::bad_request, hello.error);
+                close(RejectCode::bad_request, hello.error);
                 return false;
             }
             auto joined = owner_.on_hello(*this, hello.value);
-            if (auto* no = std::get_if<rejection>(&joined)) {
-                reject(no->code, no->reason);
+            if (auto* no = std::get_if<match::rejection>(&joined)) {
+                close(no->code, no->reason);
                 return false;
             }
             player_id_ = std::get<uint32_t>(joined);
@@ -115,28 +115,28 @@ bool session::dispatch(const protocol::Message& message) {
         }
         case Payload::Input: {
             if (player_id_ == 0) {
-                reject(RejectCode::bad_request, "Input before Hello");
+                close(RejectCode::bad_request, "Input before Hello");
                 return false;
             }
             auto input = protocol::decode_input(message);
             if (!input) {
-                reject(RejectCode::bad_input, input.error);
+                close(RejectCode::bad_input, input.error);
                 return false;
             }
             if (auto no = owner_.on_input(*this, input.value)) {
-                reject(no->code, no->reason);
+                close(no->code, no->reason);
                 return false;
             }
             return true;
         }
         case Payload::Ping: {
             if (player_id_ == 0) {
-                reject(RejectCode::bad_request, "Ping before Hello");
+                close(RejectCode::bad_request, "Ping before Hello");
                 return false;
             }
             auto ping = protocol::decode_ping(message);
             if (!ping) {
-                reject(RejectCode::bad_request, ping.error);
+                close(RejectCode::bad_request, ping.error);
                 return false;
             }
             send(protocol::encode_pong(ping.value.client_time, owner_.current_tick()));
@@ -149,8 +149,8 @@ bool session::dispatch(const protocol::Message& message) {
             return false;
         }
         default:
-            reject(RejectCode::bad_request,
-                   "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
+            close(RejectCode::bad_request,
+                  "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
             return false;
     }
 }
@@ -192,7 +192,7 @@ boost::asio::awaitable<void> session::writer() {
 void session::send(protocol::frame_bytes frame) {
     if (closing_) return;
     if (control_.size() >= owner_.options().max_control_frames) {
-        reject(RejectCode::slow_consumer, "too many messages waiting to be sent");
+        close(RejectCode::slow_consumer, "too many messages waiting to be sent");
         return;
     }
     control_.push_back(std::move(frame));
@@ -218,14 +218,14 @@ void session::snapshot_queued() {
     wake_.cancel();
 }
 
-void session::reject(RejectCode code, std::string_view reason) {
+void session::close(RejectCode code, std::string_view reason) {
     if (closing_) return;
     owner_.count_reject(code, peer_, reason);
     owner_.on_closed(*this, std::string(protocol::EnumNameRejectCode(code)) + ": " + std::string(reason));
     close_after(protocol::encode_reject(code, reason));
 }
 
-void session::say_bye(std::string_view reason) {
+void session::close_with_bye(std::string_view reason) {
     if (closing_) return;
     owner_.on_closed(*this, reason);
     close_after(protocol::encode_bye(reason));

@@ -11,13 +11,13 @@
 #include <string>
 
 #include "protocol/framing.hpp"
-#include "server/net/participant.hpp"
+#include "server/match/connection.hpp"
 
 namespace arena::net {
 
 class server;
 
-class session : public participant, public std::enable_shared_from_this<session> {
+class session : public match::connection, public std::enable_shared_from_this<session> {
 public:
     session(boost::asio::ip::tcp::socket socket, server& owner, uint64_t id);
 
@@ -25,16 +25,16 @@ public:
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
     void send_snapshot_frame(std::span<const uint8_t> frame) override;
-    void reject(protocol::RejectCode code, std::string_view reason) override;
+    void close(protocol::RejectCode code, std::string_view reason) override;
     // Sends Bye(reason) and closes (server shutdown, a takeover).
-    void say_bye(std::string_view reason) override;
+    void close_with_bye(std::string_view reason) override;
+    std::string_view peer() const override { return peer_; }
 
     // Nanoseconds that output has waited without a byte written (0 when nothing waits).
     int64_t stalled_ns(int64_t now_ns) const;
     uint64_t id() const { return id_; }
     uint32_t player_id() const { return player_id_; }
     bool closing() const { return closing_; }
-    const std::string& peer() const { return peer_; }
 
 private:
     boost::asio::awaitable<void> reader();

@@ -165,7 +165,7 @@ protocol::result<entry> reader::check_order(record rec, uint64_t start) {
     using r = protocol::result<entry>;
     if (std::holds_alternative<header>(rec))
         return r::failure(at(start, "unexpected record type Header after the header"));
-    if (auto* t = std::get_if<tick_record>(&rec)) {
+    if (auto* t = std::get_if<match::tick_record>(&rec)) {
         if (t->tick != next_tick_) {
             return r::failure(at(start, "Tick record for tick " + std::to_string(t->tick) + " where tick " +
                                             std::to_string(next_tick_) + " was expected"));

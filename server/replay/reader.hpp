@@ -11,16 +11,16 @@
 #include <vector>
 
 #include "protocol/result.hpp"
+#include "server/match/tick_record.hpp"
 #include "server/replay/file_handle.hpp"
 #include "server/replay/header.hpp"
 #include "server/replay/record_format.hpp"
-#include "server/replay/tick_record.hpp"
 #include "server/world/config.hpp"
 
 namespace arena::replay {
 
 // What follows the header: ticks, with Hash records between them, then one End.
-using entry = std::variant<tick_record, hash_check, end_marker>;
+using entry = std::variant<match::tick_record, hash_check, end_marker>;
 
 class reader {
 public:

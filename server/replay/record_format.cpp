@@ -41,7 +41,7 @@ header decode_header(const fb::Header& h) {
 }
 
 protocol::result<record> decode_tick(const fb::Tick& t) {
-    tick_record out;
+    match::tick_record out;
     out.tick = t.tick();
     if (const auto* joins = t.joins()) out.joins.assign(joins->begin(), joins->end());
     if (const auto* leaves = t.leaves()) out.leaves.assign(leaves->begin(), leaves->end());
@@ -98,7 +98,7 @@ void record_encoder::append(const header& h, std::vector<uint8_t>& out) {
     finish_into(out);
 }
 
-void record_encoder::append(const tick_record& t, std::vector<uint8_t>& out) {
+void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& out) {
     // Empty vectors are left out: most ticks have no joins or leaves.
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> joins, leaves;
     flatbuffers::Offset<flatbuffers::Vector<const fb::TickInput*>> inputs;

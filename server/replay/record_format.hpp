@@ -16,8 +16,8 @@
 #include <flatbuffers/flatbuffers.h>
 
 #include "protocol/result.hpp"
+#include "server/match/tick_record.hpp"
 #include "server/replay/header.hpp"
-#include "server/replay/tick_record.hpp"
 
 namespace arena::replay {
 
@@ -42,7 +42,7 @@ struct end_marker {
     uint64_t hash = 0;
 };
 
-using record = std::variant<header, tick_record, hash_check, end_marker>;
+using record = std::variant<header, match::tick_record, hash_check, end_marker>;
 
 // FNV-1a 32 (offset basis 2166136261, prime 16777619): any single changed byte changes it,
 // since every step is a bijection of the 32-bit state.
@@ -52,7 +52,7 @@ uint32_t record_checksum(std::span<const uint8_t> body);
 class record_encoder {
 public:
     void append(const header& h, std::vector<uint8_t>& out);
-    void append(const tick_record& t, std::vector<uint8_t>& out);
+    void append(const match::tick_record& t, std::vector<uint8_t>& out);
     void append(const hash_check& c, std::vector<uint8_t>& out);
     void append(const end_marker& e, std::vector<uint8_t>& out);
 

@@ -74,7 +74,7 @@ status recorder::flush() {
     return ok_status();
 }
 
-status recorder::record_tick(const tick_record& record, uint64_t hash_after_step) {
+status recorder::record_tick(const match::tick_record& record, uint64_t hash_after_step) {
     if (!error_.empty()) return status::failure(error_);
     if (!file_) return status::failure("replay recorder is not open");
     if (record.tick != next_tick_) {

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "protocol/result.hpp"
+#include "server/match/tick_record.hpp"
 #include "server/replay/file_handle.hpp"
 #include "server/replay/header.hpp"
 #include "server/replay/record_format.hpp"
 #include "server/replay/status.hpp"
-#include "server/replay/tick_record.hpp"
 
 namespace arena::replay {
 
@@ -40,7 +40,7 @@ public:
     // the header's hash_interval. Ticks must come one after another from the header's
     // start_tick (record.tick == the world's tick before the step); a gap is refused and
     // nothing is written. After a write error every call returns that error.
-    status record_tick(const tick_record& record, uint64_t hash_after_step);
+    status record_tick(const match::tick_record& record, uint64_t hash_after_step);
 
     // Writes the End record (the world's tick and hash now), flushes and closes the file.
     status finish(uint32_t final_tick, uint64_t final_hash);

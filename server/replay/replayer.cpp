@@ -54,10 +54,10 @@ replay_report replayer::run(const replay_options& options) {
             report.error = next.error;
             return finish(report);
         }
-        if (auto* t = std::get_if<tick_record>(&next.value)) {
+        if (auto* t = std::get_if<match::tick_record>(&next.value)) {
             // `until` stops before the next step, once that tick's Hash record (if any) is checked.
             if (reached_until()) break;
-            apply_tick(world_, *t);
+            match::apply_tick(world_, *t);
             ++report.ticks_replayed;
             if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
         } else if (auto* c = std::get_if<hash_check>(&next.value)) {

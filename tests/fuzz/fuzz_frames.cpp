@@ -1,6 +1,6 @@
 // Fuzz target: bytes from a client, through everything the server does with them before the
-// world: framing (in uneven chunks), verification, decoding, and the game's handling of Hello
-// and Input (a fake participant stands in for the socket).
+// world: framing (in uneven chunks), verification, decoding, and the match's handling of Hello
+// and Input (a fake connection stands in for the socket).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -8,18 +8,18 @@
 #include "protocol/decode.hpp"
 #include "protocol/framing.hpp"
 #include "protocol/verify.hpp"
-#include "server/net/game.hpp"
-#include "server/net/log.hpp"
+#include "server/match/match.hpp"
 #include "server/world/presets.hpp"
 
 namespace {
 
-struct null_participant : arena::net::participant {
+struct null_connection : arena::match::connection {
     void send(arena::protocol::frame_bytes) override {}
     void send_snapshot(const arena::protocol::snapshot_encoder&, uint32_t) override {}
     void send_snapshot_frame(std::span<const uint8_t>) override {}
-    void reject(arena::protocol::RejectCode, std::string_view) override {}
-    void say_bye(std::string_view) override {}
+    void close(arena::protocol::RejectCode, std::string_view) override {}
+    void close_with_bye(std::string_view) override {}
+    std::string_view peer() const override { return "fuzz"; }
 };
 
 arena::world::world_config small_world() {
@@ -33,9 +33,8 @@ arena::world::world_config small_world() {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace arena;
     static const world::world_config config = small_world();
-    net::set_logging(false);
-    net::game game({}, config);
-    null_participant client;
+    match::match game({}, config);
+    null_connection client;
     uint32_t player = 0;
     protocol::frame_reader reader;
     // The first byte picks the chunk size, so that prefixes and bodies get split anywhere.

@@ -78,12 +78,12 @@ TEST_CASE("a Header round-trips with every field", "[replay]") {
 }
 
 TEST_CASE("a Tick round-trips with joins, leaves and the exact bits of every input", "[replay]") {
-    tick_record t;
+    match::tick_record t;
     t.tick = 99;
     t.joins = {4, 9};
     t.leaves = {2};
     t.inputs = {{3, {-0.0f, 0.25f, world::button_impulse}}, {7, {1.0f, -1.0f, 0}}, {8, {0.1f, 0.0f, 0}}};
-    const tick_record out = round_trip(t);
+    const match::tick_record out = round_trip(t);
     CHECK(out.tick == 99);
     CHECK(out.joins == t.joins);
     CHECK(out.leaves == t.leaves);
@@ -98,7 +98,7 @@ TEST_CASE("a Tick round-trips with joins, leaves and the exact bits of every inp
 }
 
 TEST_CASE("an empty Tick round-trips", "[replay]") {
-    const tick_record out = round_trip(tick_record{5, {}, {}, {}});
+    const match::tick_record out = round_trip(match::tick_record{5, {}, {}, {}});
     CHECK(out.tick == 5);
     CHECK(out.joins.empty());
     CHECK(out.leaves.empty());
@@ -117,7 +117,7 @@ TEST_CASE("Hash and End records round-trip", "[replay]") {
 TEST_CASE("a Tick with a non-finite input is refused: NaN never enters the world", "[replay]") {
     record_encoder encoder;
     std::vector<uint8_t> bytes;
-    tick_record t{3, {}, {}, {{5, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}};
+    match::tick_record t{3, {}, {}, {{5, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}};
     encoder.append(t, bytes);
     const aligned_frame f = frame_of(bytes);
     const auto decoded = decode_record(f.span());

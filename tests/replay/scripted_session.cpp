@@ -2,8 +2,8 @@
 
 #include <map>
 
+#include "server/match/tick_record.hpp"
 #include "server/replay/recorder.hpp"
-#include "server/replay/tick_record.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
 
@@ -70,7 +70,7 @@ protocol::result<session_result> record_scripted_session(const std::string& path
     world::rng inputs_rng(script.script_seed);
     std::map<uint32_t, player> players;  // by owner
     for (uint32_t k = 0; k < script.ticks; ++k) {
-        tick_record record;
+        match::tick_record record;
         record.tick = w.tick();
         // Inputs come from players already in the world; this tick's joins send from the next.
         record.inputs = draw_inputs(inputs_rng, players);
@@ -90,7 +90,7 @@ protocol::result<session_result> record_scripted_session(const std::string& path
             }
             return false;
         });
-        const std::vector<uint32_t> spawned = apply_tick(w, record);
+        const std::vector<uint32_t> spawned = match::apply_tick(w, record);
         for (size_t i = 0; i < spawned.size(); ++i) {
             if (spawned[i] != 0) players[record.joins[i]].body_id = spawned[i];
         }

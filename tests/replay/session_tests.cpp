@@ -126,8 +126,8 @@ TEST_CASE("a running recorder has every whole second of ticks on disk", "[replay
     recorder& rec = opened.value;
     const uint32_t player = *w.spawn_player(1);
     for (uint32_t k = 0; k < 75; ++k) {
-        tick_record record{w.tick(), {}, {}, {{player, {1, 0.5f, 0}}}};
-        apply_tick(w, record);
+        match::tick_record record{w.tick(), {}, {}, {{player, {1, 0.5f, 0}}}};
+        match::apply_tick(w, record);
         REQUIRE(rec.record_tick(record, w.hash()).ok());
     }
     // 75 ticks at 30 per second: two whole seconds (60 ticks) are on disk, the rest is buffered.
@@ -140,7 +140,7 @@ TEST_CASE("a running recorder has every whole second of ticks on disk", "[replay
             CHECK_THAT(next.error, Catch::Contains("without an End record"));
             break;
         }
-        if (std::holds_alternative<tick_record>(next.value)) ++ticks_on_disk;
+        if (std::holds_alternative<match::tick_record>(next.value)) ++ticks_on_disk;
     }
     CHECK(ticks_on_disk == 60);
     REQUIRE(rec.finish(w.tick(), w.hash()).ok());
@@ -152,10 +152,10 @@ TEST_CASE("the recorder refuses a gap in the ticks and a finish at the wrong tic
     auto opened = recorder::open(file.path(), make_header(w, "asteroids", 5, 60));
     REQUIRE(opened.ok());
     recorder& rec = opened.value;
-    tick_record record{w.tick(), {}, {}, {}};
-    apply_tick(w, record);
+    match::tick_record record{w.tick(), {}, {}, {}};
+    match::apply_tick(w, record);
     REQUIRE(rec.record_tick(record, w.hash()).ok());
-    const auto gap = rec.record_tick(tick_record{5, {}, {}, {}}, 0);
+    const auto gap = rec.record_tick(match::tick_record{5, {}, {}, {}}, 0);
     CHECK_THAT(gap.error, Catch::Contains("tick 5 recorded where tick 1 was due"));
     CHECK_THAT(rec.finish(7, 0).error, Catch::Contains("finish at tick 7"));
     REQUIRE(rec.finish(w.tick(), w.hash()).ok());

@@ -1,18 +1,17 @@
-// The game without sockets: participants are recorders of what they were sent.
+// The match without sockets: connections are recorders of what they were sent.
 #include <catch2/catch.hpp>
 #include <limits>
 
 #include "protocol/decode.hpp"
 #include "protocol/verify.hpp"
-#include "server/net/game.hpp"
+#include "server/match/match.hpp"
 #include "server/world/presets.hpp"
 
 using namespace arena;
-using namespace arena::net;
 
 namespace {
 
-struct fake_client : participant {
+struct fake_client : match::connection {
     std::vector<protocol::frame_bytes> frames;
     std::vector<uint32_t> snapshot_acks;
     std::vector<uint32_t> snapshot_ticks;
@@ -30,13 +29,14 @@ struct fake_client : participant {
         snapshot_acks.push_back(snap.value.ack_sequence);
         snapshot_ticks.push_back(snap.value.tick);
     }
-    void reject(protocol::RejectCode code, std::string_view) override { rejected = code; }
+    void close(protocol::RejectCode code, std::string_view) override { rejected = code; }
     std::string bye;
-    void say_bye(std::string_view reason) override { bye = reason; }
+    void close_with_bye(std::string_view reason) override { bye = reason; }
+    std::string_view peer() const override { return "test"; }
 };
 
-game_config make_config(uint32_t max_players = 64, uint32_t max_inputs_per_second = 0) {
-    game_config c;
+match::match_config make_config(uint32_t max_players = 64, uint32_t max_inputs_per_second = 0) {
+    match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
     c.max_players = max_players;
@@ -50,8 +50,8 @@ protocol::hello_msg hello(uint16_t version = protocol::protocol_version) {
 
 }  // namespace
 
-TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[net][game]") {
-    game g(make_config(2), world::asteroids_preset());
+TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[match]") {
+    match::match g(make_config(2), world::asteroids_preset());
     fake_client c;
     auto joined = g.join(c, hello());
     REQUIRE(std::holds_alternative<uint32_t>(joined));
@@ -69,20 +69,20 @@ TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[
     CHECK(welcome.value.world_config == g.world_config_json());
 }
 
-TEST_CASE("version mismatch and a full server are refused with their codes", "[net][game]") {
-    game g(make_config(1), world::asteroids_preset());
+TEST_CASE("version mismatch and a full server are refused with their codes", "[match]") {
+    match::match g(make_config(1), world::asteroids_preset());
     fake_client a, b, c;
     auto wrong = g.join(a, hello(99));
-    REQUIRE(std::holds_alternative<rejection>(wrong));
-    CHECK(std::get<rejection>(wrong).code == protocol::RejectCode::version_mismatch);
+    REQUIRE(std::holds_alternative<match::rejection>(wrong));
+    CHECK(std::get<match::rejection>(wrong).code == protocol::RejectCode::version_mismatch);
     REQUIRE(std::holds_alternative<uint32_t>(g.join(b, hello())));
     auto full = g.join(c, hello());
-    REQUIRE(std::holds_alternative<rejection>(full));
-    CHECK(std::get<rejection>(full).code == protocol::RejectCode::server_full);
+    REQUIRE(std::holds_alternative<match::rejection>(full));
+    CHECK(std::get<match::rejection>(full).code == protocol::RejectCode::server_full);
 }
 
-TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last consumed sequence", "[net][game]") {
-    game g(make_config(), world::asteroids_preset());
+TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last consumed sequence", "[match]") {
+    match::match g(make_config(), world::asteroids_preset());
     fake_client c;
     const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
     g.tick();  // spawns
@@ -96,22 +96,22 @@ TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last co
     CHECK(c.snapshot_acks.back() == c.snapshot_ticks.back() - 1);
 }
 
-TEST_CASE("a NaN input and an input flood are refused", "[net][game]") {
-    game g(make_config(64, 10), world::asteroids_preset());
+TEST_CASE("a NaN input and an input flood are refused", "[match]") {
+    match::match g(make_config(64, 10), world::asteroids_preset());
     fake_client c;
     const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
     g.tick();
     auto nan = g.receive_input(id, {1, std::numeric_limits<float>::quiet_NaN(), 0, 0});
     REQUIRE(nan);
     CHECK(nan->code == protocol::RejectCode::bad_input);
-    std::optional<rejection> flood;
+    std::optional<match::rejection> flood;
     for (uint32_t s = 1; s <= 20 && !flood; ++s) flood = g.receive_input(id, {s, 0, 0, 0});
     REQUIRE(flood);
     CHECK(flood->code == protocol::RejectCode::rate_limit);
 }
 
-TEST_CASE("a player who leaves loses its body at the next tick", "[net][game]") {
-    game g({}, world::asteroids_preset());
+TEST_CASE("a player who leaves loses its body at the next tick", "[match]") {
+    match::match g({}, world::asteroids_preset());
     fake_client c;
     const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
     g.tick();
@@ -122,10 +122,10 @@ TEST_CASE("a player who leaves loses its body at the next tick", "[net][game]") 
     CHECK(g.player_count() == 0);
 }
 
-TEST_CASE("a dropped player comes back to the same body within the grace period", "[net][game][reconnect]") {
-    game_config config = make_config();
+TEST_CASE("a dropped player comes back to the same body within the grace period", "[match][reconnect]") {
+    match::match_config config = make_config();
     config.reconnect_grace_s = 1;  // 60 ticks
-    game g(config, world::asteroids_preset());
+    match::match g(config, world::asteroids_preset());
     fake_client first, second;
     const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-1"));
     g.tick();
@@ -146,10 +146,10 @@ TEST_CASE("a dropped player comes back to the same body within the grace period"
     CHECK(g.counters().reconnects == 1);
 }
 
-TEST_CASE("after the grace period a dropped player's body is removed", "[net][game][reconnect]") {
-    game_config config = make_config();
+TEST_CASE("after the grace period a dropped player's body is removed", "[match][reconnect]") {
+    match::match_config config = make_config();
     config.reconnect_grace_s = 0.5;  // 30 ticks
-    game g(config, world::asteroids_preset());
+    match::match g(config, world::asteroids_preset());
     fake_client c, later;
     const uint32_t id = std::get<uint32_t>(g.join(c, hello(), "key-2"));
     g.tick();
@@ -164,8 +164,8 @@ TEST_CASE("after the grace period a dropped player's body is removed", "[net][ga
     CHECK(std::get<uint32_t>(again) != id);
 }
 
-TEST_CASE("a second connection with the same identity takes the player over", "[net][game][reconnect]") {
-    game g(make_config(), world::asteroids_preset());
+TEST_CASE("a second connection with the same identity takes the player over", "[match][reconnect]") {
+    match::match g(make_config(), world::asteroids_preset());
     fake_client first, second;
     const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-3"));
     g.tick();
@@ -177,8 +177,8 @@ TEST_CASE("a second connection with the same identity takes the player over", "[
     CHECK(g.counters().takeovers == 1);
 }
 
-TEST_CASE("a player without an identity or who says bye leaves at once", "[net][game][reconnect]") {
-    game g(make_config(), world::asteroids_preset());
+TEST_CASE("a player without an identity or who says bye leaves at once", "[match][reconnect]") {
+    match::match g(make_config(), world::asteroids_preset());
     fake_client anonymous, named;
     const uint32_t a = std::get<uint32_t>(g.join(anonymous, hello()));
     const uint32_t b = std::get<uint32_t>(g.join(named, hello(), "key-4"));

@@ -7,7 +7,7 @@
 
 #include "server/world/input.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 struct sequenced_input {
     uint32_t sequence = 0;
@@ -53,4 +53,4 @@ private:
     uint64_t overflows_ = 0;
 };
 
-}  // namespace arena::net
+}  // namespace arena::match

@@ -1,8 +1,8 @@
-#include "server/net/view_history.hpp"
+#include "server/match/view_history.hpp"
 
-#include "server/net/body_state.hpp"
+#include "server/match/body_state.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 namespace delta = protocol::delta;
 
@@ -35,4 +35,4 @@ const std::vector<uint32_t>* client_views::at(uint32_t tick) const {
     return tick != 0 && e.tick == tick ? &e.indices : nullptr;
 }
 
-}  // namespace arena::net
+}  // namespace arena::match

@@ -1,31 +1,32 @@
-#include "server/net/game.hpp"
+#include "server/match/match.hpp"
 
 #include "protocol/config_hash.hpp"
 #include "protocol/version.hpp"
 #include "server/config/config_json.hpp"
-#include "server/net/log.hpp"
+#include "server/match/logger.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 using protocol::RejectCode;
 
-game::game(const game_config& config, const world::world_config& world_config)
+match::match(const match_config& config, const world::world_config& world_config, logger log)
     : config_(config),
+      log_(std::move(log)),
       world_(world_config, config.seed),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
       fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {}
 
-uint32_t game::snapshot_interval() const {
+uint32_t match::snapshot_interval() const {
     return std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
 }
 
-uint32_t game::input_limit() const {
+uint32_t match::input_limit() const {
     return config_.max_inputs_per_second ? config_.max_inputs_per_second : 2u * config_.tick_rate + 10u;
 }
 
-std::variant<uint32_t, rejection> game::join(participant& who, const protocol::hello_msg& hello,
-                                             const std::string& identity) {
+std::variant<uint32_t, rejection> match::join(connection& who, const protocol::hello_msg& hello,
+                                              const std::string& identity) {
     if (hello.protocol_version != protocol::protocol_version)
         return rejection{RejectCode::version_mismatch, "protocol version " + std::to_string(hello.protocol_version) +
                                                            " is not supported; this server speaks " +
@@ -41,9 +42,9 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
             if (p.identity != identity) continue;
             // The same player again: a reconnection, or a new connection taking over.
             if (p.who) {
-                participant* old = p.who;
+                connection* old = p.who;
                 p.who = nullptr;  // detach first: the old connection's leave must not touch the player
-                old->say_bye("signed in from another connection");
+                old->close_with_bye("signed in from another connection");
                 ++counters_.takeovers;
             } else {
                 ++counters_.reconnects;
@@ -53,7 +54,7 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
             p.last_received_sequence = 0;  // a new connection numbers its inputs from 1 again
             p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
             if (p.body_id != 0) pending_welcomes_.push_back(id);
-            log_line("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
+            log_("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
             return id;
         }
     }
@@ -68,21 +69,21 @@ std::variant<uint32_t, rejection> game::join(participant& who, const protocol::h
     return id;
 }
 
-void game::leave(uint32_t player_id, const participant& who, std::string_view reason, bool connection_lost) {
+void match::leave(uint32_t player_id, const connection& who, std::string_view reason, bool connection_lost) {
     auto it = players_.find(player_id);
     if (it == players_.end() || it->second.who != &who) return;
     player& p = it->second;
     if (connection_lost && !p.identity.empty() && p.body_id != 0 && config_.reconnect_grace_s > 0) {
         p.who = nullptr;
         p.disconnected_at_tick = world_.tick();
-        log_line("disconnect player=%u name=%s reason=%.*s (body kept for %.0f s)", player_id, p.name.c_str(),
-                 static_cast<int>(reason.size()), reason.data(), config_.reconnect_grace_s);
+        log_("disconnect player=%u name=%s reason=%.*s (body kept for %.0f s)", player_id, p.name.c_str(),
+             static_cast<int>(reason.size()), reason.data(), config_.reconnect_grace_s);
         return;
     }
     remove_player(it, reason);
 }
 
-void game::remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason) {
+void match::remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason) {
     player& p = it->second;
     if (p.body_id != 0) {
         pending_leaves_.push_back(p.body_id);
@@ -93,12 +94,12 @@ void game::remove_player(std::map<uint32_t, player>::iterator it, std::string_vi
     counters_.input_underruns += p.inputs.underruns();
     counters_.input_overflows += p.inputs.overflows();
     ++counters_.leaves;
-    log_line("leave player=%u name=%s reason=%.*s", it->first, p.name.c_str(), static_cast<int>(reason.size()),
-             reason.data());
+    log_("leave player=%u name=%s reason=%.*s", it->first, p.name.c_str(), static_cast<int>(reason.size()),
+         reason.data());
     players_.erase(it);
 }
 
-void game::expire_disconnected() {
+void match::expire_disconnected() {
     const auto grace_ticks = static_cast<uint32_t>(config_.reconnect_grace_s * config_.tick_rate);
     for (auto it = players_.begin(); it != players_.end();) {
         auto next = std::next(it);
@@ -108,7 +109,7 @@ void game::expire_disconnected() {
     }
 }
 
-std::optional<rejection> game::receive_input(uint32_t player_id, const protocol::input_msg& input) {
+std::optional<rejection> match::receive_input(uint32_t player_id, const protocol::input_msg& input) {
     auto it = players_.find(player_id);
     if (it == players_.end()) return std::nullopt;
     player& p = it->second;
@@ -127,9 +128,9 @@ std::optional<rejection> game::receive_input(uint32_t player_id, const protocol:
     return std::nullopt;
 }
 
-void game::tick() {
+void match::tick() {
     expire_disconnected();
-    replay::tick_record record;
+    tick_record record;
     record.tick = world_.tick();
     record.joins = pending_joins_;
     record.leaves = pending_leaves_;
@@ -139,7 +140,7 @@ void game::tick() {
         // A disconnected player's body coasts: no thrust, no turn, no buttons.
         if (p.body_id != 0) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
     }
-    const std::vector<uint32_t> spawned = replay::apply_tick(world_, record);
+    const std::vector<uint32_t> spawned = apply_tick(world_, record);
     if (on_tick) on_tick(record, world_.hash());
     spawn_pending(record.joins, spawned);
     for (uint32_t id : pending_welcomes_) {
@@ -155,24 +156,24 @@ void game::tick() {
     send_snapshots();
 }
 
-void game::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
+void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
     for (size_t i = 0; i < owners.size(); ++i) {
         auto it = players_.find(owners[i]);
         if (it == players_.end()) continue;
         player& p = it->second;
         if (bodies[i] == 0) {
-            if (p.who) p.who->reject(RejectCode::server_full, "the world has no room for another body");
+            if (p.who) p.who->close(RejectCode::server_full, "the world has no room for another body");
             continue;
         }
         p.body_id = bodies[i];
         ++counters_.joins;
         counters_.players_peak = std::max<uint32_t>(counters_.players_peak, static_cast<uint32_t>(players_.size()));
         if (p.who) send_welcome(owners[i], p);
-        log_line("join player=%u body=%u name=%s", owners[i], p.body_id, p.name.c_str());
+        log_("join player=%u body=%u name=%s", owners[i], p.body_id, p.name.c_str());
     }
 }
 
-void game::send_welcome(uint32_t player_id, const player& p) {
+void match::send_welcome(uint32_t player_id, const player& p) {
     protocol::welcome_info welcome;
     welcome.player_id = player_id;
     welcome.entity_id = p.body_id;
@@ -187,7 +188,7 @@ void game::send_welcome(uint32_t player_id, const player& p) {
     p.who->send(protocol::encode_welcome(welcome));
 }
 
-void game::send_snapshots() {
+void match::send_snapshots() {
     // BodyState clients all get theirs on the ticks that are multiples of the interval (one
     // shared frame when they see the whole world). Delta clients cost a view query and an
     // encoding each, so they are spread over the interval by player id: a third of them on
@@ -213,8 +214,8 @@ void game::send_snapshots() {
     }
 }
 
-game_counters game::counters() const {
-    game_counters total = counters_;
+match_counters match::counters() const {
+    match_counters total = counters_;
     total.snapshots = fanout_.counters();
     for (const auto& [id, p] : players_) {
         total.input_underruns += p.inputs.underruns();
@@ -223,4 +224,4 @@ game_counters game::counters() const {
     return total;
 }
 
-}  // namespace arena::net
+}  // namespace arena::match

@@ -1,7 +1,7 @@
 #pragma once
 // The match: the world, its players and their input buffers, one tick at a time, and the
-// snapshot fan-out. It knows clients only as participants and never reads a clock: the
-// server's tick loop calls tick() at the fixed rate.
+// snapshot fan-out. It knows clients only as connections it was handed, logs through a logger
+// it was handed and never reads a clock: the server's tick loop calls tick() at the fixed rate.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -12,15 +12,16 @@
 
 #include "protocol/messages.hpp"
 #include "protocol/snapshot.hpp"
-#include "server/net/input_buffer.hpp"
-#include "server/net/participant.hpp"
-#include "server/net/snapshot_fanout.hpp"
-#include "server/replay/tick_record.hpp"
+#include "server/match/connection.hpp"
+#include "server/match/input_buffer.hpp"
+#include "server/match/logger.hpp"
+#include "server/match/snapshot_fanout.hpp"
+#include "server/match/tick_record.hpp"
 #include "server/world/world.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
-struct game_config {
+struct match_config {
     uint16_t tick_rate = 60;      // ticks per second
     uint16_t snapshot_rate = 20;  // snapshots per second (a divisor of tick_rate works best)
     uint32_t max_players = 64;
@@ -40,7 +41,7 @@ struct rejection {
     std::string reason;
 };
 
-struct game_counters {
+struct match_counters {
     uint64_t joins = 0;
     uint64_t leaves = 0;
     uint64_t snapshots_sent = 0;
@@ -55,20 +56,20 @@ struct game_counters {
     fanout_counters snapshots;  // frames by kind, and the delta frames' bytes and bodies
 };
 
-class game {
+class match {
 public:
-    game(const game_config& config, const world::world_config& world_config);
+    match(const match_config& config, const world::world_config& world_config, logger log = {});
 
     // A Hello: the player id, or why not. The body spawns and Welcome is sent at the next tick.
     // `identity` (from a verified token, or the client's opaque token; empty: none) lets a
     // player whose connection dropped come back to the same player and body within the grace
     // period; a second connection with a connected identity takes the player over.
-    std::variant<uint32_t, rejection> join(participant& who, const protocol::hello_msg& hello,
+    std::variant<uint32_t, rejection> join(connection& who, const protocol::hello_msg& hello,
                                            const std::string& identity = {});
     // `who` is gone. After a Bye or a refusal its body goes at the next tick; after a lost
     // connection the body waits reconnect_grace_s for the same identity. A call from a
-    // participant that no longer holds the player (it was taken over) changes nothing.
-    void leave(uint32_t player_id, const participant& who, std::string_view reason, bool connection_lost = false);
+    // connection that no longer holds the player (it was taken over) changes nothing.
+    void leave(uint32_t player_id, const connection& who, std::string_view reason, bool connection_lost = false);
     // An Input from a joined player: buffered for the world, or why it ends the connection.
     std::optional<rejection> receive_input(uint32_t player_id, const protocol::input_msg& input);
 
@@ -76,18 +77,18 @@ public:
     void tick();
 
     // Called after every step with what the tick changed and the world's hash (recording).
-    std::function<void(const replay::tick_record&, uint64_t)> on_tick;
+    std::function<void(const tick_record&, uint64_t)> on_tick;
 
     const world::world& state() const { return world_; }
-    const game_config& config() const { return config_; }
+    const match_config& config() const { return config_; }
     const std::string& world_config_json() const { return world_config_json_; }
     // Totals so far, live players' input buffers included.
-    game_counters counters() const;
+    match_counters counters() const;
     size_t player_count() const { return players_.size(); }
 
 private:
     struct player {
-        participant* who = nullptr;  // nullptr while disconnected within the grace period
+        connection* who = nullptr;  // nullptr while disconnected within the grace period
         std::string name;
         std::string identity;
         uint32_t disconnected_at_tick = 0;
@@ -107,7 +108,8 @@ private:
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
-    game_config config_;
+    match_config config_;
+    logger log_;
     world::world world_;
     std::string world_config_json_;
     uint64_t world_config_hash_;
@@ -117,7 +119,7 @@ private:
     std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
     snapshot_fanout fanout_;
-    game_counters counters_;  // departed players' buffers folded in on leave
+    match_counters counters_;  // departed players' buffers folded in on leave
 };
 
-}  // namespace arena::net
+}  // namespace arena::match

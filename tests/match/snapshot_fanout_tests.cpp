@@ -21,14 +21,12 @@
 #include "protocol/delta/quantize.hpp"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/verify.hpp"
-#include "server/net/game.hpp"
-#include "server/net/log.hpp"
+#include "server/match/match.hpp"
 #include "server/world/broadphase.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
 
 using namespace arena;
-using namespace arena::net;
 using protocol::delta::quantized_body;
 
 namespace {
@@ -36,8 +34,8 @@ namespace {
 constexpr uint16_t tick_rate = 60;
 constexpr uint32_t snapshot_interval = 3;  // 60 Hz ticks, 20 Hz snapshots
 
-game_config delta_config(float view_radius, uint32_t delta_history = 32) {
-    game_config c;
+match::match_config delta_config(float view_radius, uint32_t delta_history = 32) {
+    match::match_config c;
     c.tick_rate = tick_rate;
     c.snapshot_rate = tick_rate / snapshot_interval;
     c.view_radius = view_radius;
@@ -46,7 +44,7 @@ game_config delta_config(float view_radius, uint32_t delta_history = 32) {
 }
 
 // Ticks a snapshot stays usable as a baseline: the server keeps the last delta_history.
-uint32_t kept_ticks(const game_config& c) {
+uint32_t kept_ticks(const match::match_config& c) {
     return c.delta_history * snapshot_interval;
 }
 
@@ -54,8 +52,8 @@ protocol::hello_msg hello(bool delta) {
     return {protocol::protocol_version, "tester", "", delta};
 }
 
-// Keeps what the game sends; the test decides what the client makes of it.
-struct recording_client : participant {
+// Keeps what the match sends; the test decides what the client makes of it.
+struct recording_client : match::connection {
     std::vector<protocol::frame_bytes> control;    // Welcome, in order
     std::vector<protocol::frame_bytes> snapshots;  // not yet looked at
     bool closed = false;
@@ -66,8 +64,9 @@ struct recording_client : participant {
     void send_snapshot_frame(std::span<const uint8_t> frame) override {
         snapshots.emplace_back(frame.begin(), frame.end());
     }
-    void reject(protocol::RejectCode, std::string_view) override { closed = true; }
-    void say_bye(std::string_view) override { closed = true; }
+    void close(protocol::RejectCode, std::string_view) override { closed = true; }
+    void close_with_bye(std::string_view) override { closed = true; }
+    std::string_view peer() const override { return "test"; }
 };
 
 // The body a Welcome gave this client; 0 before one came.
@@ -178,12 +177,13 @@ struct decoded_snapshot {
     std::vector<uint32_t> ids;  // of the bodies in the view
 };
 
-// A game and one delta client that decodes every snapshot it is sent. The tests ask for "the
+// A match and one delta client that decodes every snapshot it is sent. The tests ask for "the
 // next snapshot", never for a tick: which tick of the interval a client's snapshots fall on is
 // the server's choice.
 struct delta_session {
     // earlier: another delta client, joined ticks_before_join ticks before this one.
-    explicit delta_session(const game_config& config, participant* earlier = nullptr, uint32_t ticks_before_join = 0)
+    explicit delta_session(const match::match_config& config, match::connection* earlier = nullptr,
+                           uint32_t ticks_before_join = 0)
         : g(config, world::asteroids_preset()) {
         if (earlier != nullptr) REQUIRE(std::holds_alternative<uint32_t>(g.join(*earlier, hello(true))));
         for (uint32_t k = 0; k < ticks_before_join; ++k) g.tick();
@@ -209,7 +209,7 @@ struct delta_session {
     }
 
     recording_client link;
-    game g;
+    match::match g;
     std::function<void()> after_tick;  // sees every tick's state, e.g. to check other clients
     uint32_t player = 0;
     protocol::delta::receiver rx{tick_rate};
@@ -229,7 +229,7 @@ constexpr uint32_t max_ack_lag = 24;  // ticks an acknowledgement may take to re
 
 // One connection, its decoder and its network's mood.
 struct sim_client {
-    std::unique_ptr<recording_client> link = std::make_unique<recording_client>();  // the game keeps its address
+    std::unique_ptr<recording_client> link = std::make_unique<recording_client>();  // the match keeps its address
     std::string identity;
     uint32_t player = 0;
     uint32_t body = 0;  // from Welcome; 0 before
@@ -275,7 +275,7 @@ uint32_t expected_baseline(const sim_client& c, uint32_t tick, uint32_t kept) {
     return usable ? c.acked : 0;
 }
 
-void connect(slot& s, game& g, world::rng& rng, const std::string& identity) {
+void connect(slot& s, match::match& g, world::rng& rng, const std::string& identity) {
     sim_client& c = s.client.emplace();
     c.identity = identity;
     c.delta = s.delta;
@@ -288,7 +288,7 @@ void connect(slot& s, game& g, world::rng& rng, const std::string& identity) {
 }
 
 // Players quit, lose their connection and come back, and new ones join.
-void churn(std::vector<slot>& slots, game& g, world::rng& rng, uint32_t& next_identity) {
+void churn(std::vector<slot>& slots, match::match& g, world::rng& rng, uint32_t& next_identity) {
     const uint32_t now = g.state().tick();
     for (slot& s : slots) {
         if (s.client && s.client->body != 0) {
@@ -311,7 +311,7 @@ void churn(std::vector<slot>& slots, game& g, world::rng& rng, uint32_t& next_id
     }
 }
 
-void check_delta(sim_client& c, const protocol::snapshot_view& s, const game& g, world::rng& rng,
+void check_delta(sim_client& c, const protocol::snapshot_view& s, const match::match& g, world::rng& rng,
                  session_stats& stats) {
     REQUIRE(s.is_delta);
     if (c.first_tick == 0) c.first_tick = s.tick;
@@ -331,7 +331,7 @@ void check_delta(sim_client& c, const protocol::snapshot_view& s, const game& g,
 
 // What the tick sent this client: from its Welcome on, one snapshot every snapshot_interval
 // ticks, the first within one interval (on which tick of it is the server's choice).
-void observe(sim_client& c, const game& g, world::rng& rng, session_stats& stats) {
+void observe(sim_client& c, const match::match& g, world::rng& rng, session_stats& stats) {
     const uint32_t now = g.state().tick();
     if (c.body == 0) {
         c.body = welcomed_body(*c.link);
@@ -360,7 +360,7 @@ void observe(sim_client& c, const game& g, world::rng& rng, session_stats& stats
 }
 
 // The network's mood changes now and then; then an Input goes out, unless the client is silent.
-void send_input(sim_client& c, game& g, world::rng& rng) {
+void send_input(sim_client& c, match::match& g, world::rng& rng) {
     const uint32_t now = g.state().tick();
     c.acks.push_back(c.rx.ack());
     if (c.acks.size() > max_ack_lag + 1) c.acks.pop_front();
@@ -386,9 +386,8 @@ void send_input(sim_client& c, game& g, world::rng& rng) {
 
 }  // namespace
 
-TEST_CASE("every snapshot of a long lossy session decodes to exactly the client's view", "[net][delta]") {
-    set_logging(false);  // hundreds of joins and leaves
-    game g(delta_config(80), world::asteroids_preset());
+TEST_CASE("every snapshot of a long lossy session decodes to exactly the client's view", "[match][delta]") {
+    match::match g(delta_config(80), world::asteroids_preset());
     world::rng rng(20261122);
     std::vector<slot> slots(11);
     slots[0].delta = false;  // one client keeps BodyState snapshots
@@ -415,7 +414,7 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
     INFO("delta " << stats.delta_frames << ", keyframes " << stats.keyframes << " (" << stats.keyframes_despite_ack
                   << " despite an ack), older baselines " << stats.older_baselines << ", lost " << stats.lost
                   << ", decoded " << stats.decoded << ", BodyState " << stats.full_frames);
-    const game_counters counters = g.counters();
+    const match::match_counters counters = g.counters();
     CHECK(counters.snapshots.delta_frames == stats.delta_frames);
     CHECK(counters.snapshots.keyframes == stats.keyframes);
     CHECK(counters.snapshots.full_frames == stats.full_frames);
@@ -431,8 +430,8 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
 }
 
 TEST_CASE("dropped acknowledgements: deltas against the last one until it leaves the ring, then a full view",
-          "[net][delta]") {
-    const game_config config = delta_config(80);
+          "[match][delta]") {
+    const match::match_config config = delta_config(80);
     delta_session s(config);
     const uint32_t acked = s.next_snapshot(std::nullopt).tick;
     // Every later ack is dropped: the server still holds `acked`.
@@ -444,13 +443,13 @@ TEST_CASE("dropped acknowledgements: deltas against the last one until it leaves
     // An ack gets through again: deltas resume against it.
     const uint32_t newest = s.rx.ack();
     CHECK(s.next_snapshot(newest).baseline_tick == newest);
-    const fanout_counters counters = s.g.counters().snapshots;
+    const match::fanout_counters counters = s.g.counters().snapshots;
     CHECK(counters.delta_frames == config.delta_history);  // 31 against `acked`, 1 against `newest`
     CHECK(counters.keyframes == 3);
 }
 
-TEST_CASE("an ack of a snapshot the server no longer keeps, or never sent, gets a full view", "[net][delta]") {
-    const game_config config = delta_config(80, 4);
+TEST_CASE("an ack of a snapshot the server no longer keeps, or never sent, gets a full view", "[match][delta]") {
+    const match::match_config config = delta_config(80, 4);
     SECTION("too old") {
         delta_session s(config);
         std::vector<uint32_t> ticks;
@@ -482,7 +481,7 @@ TEST_CASE("an ack of a snapshot the server no longer keeps, or never sent, gets 
     }
 }
 
-TEST_CASE("a client that never acknowledges gets a full view every time", "[net][delta]") {
+TEST_CASE("a client that never acknowledges gets a full view every time", "[match][delta]") {
     delta_session s(delta_config(80));
     for (int k = 0; k < 40; ++k) {
         // Inputs with ack 0 and no Inputs at all, alternately.
@@ -490,12 +489,12 @@ TEST_CASE("a client that never acknowledges gets a full view every time", "[net]
         CHECK(d.baseline_tick == 0);
         CHECK(!d.ids.empty());  // the own body at least
     }
-    const fanout_counters counters = s.g.counters().snapshots;
+    const match::fanout_counters counters = s.g.counters().snapshots;
     CHECK(counters.delta_frames == 0);
     CHECK(counters.keyframes == 40);
 }
 
-TEST_CASE("with view radius 0 every client's view is the whole world", "[net][delta]") {
+TEST_CASE("with view radius 0 every client's view is the whole world", "[match][delta]") {
     const size_t everything = world::asteroids_preset().rocks.count + 2;  // the rocks and both ships
     delta_session s(delta_config(0));
     recording_client plain;  // without delta_snapshots: the shared BodyState frame

@@ -4,10 +4,10 @@
 #include "protocol/arena_generated.h"
 #include "server/world/body.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 [[nodiscard]] inline protocol::BodyState body_state(const world::body& b) {
     return {b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle, b.angular_velocity};
 }
 
-}  // namespace arena::net
+}  // namespace arena::match

@@ -1,6 +1,6 @@
-#include "server/replay/tick_record.hpp"
+#include "server/match/tick_record.hpp"
 
-namespace arena::replay {
+namespace arena::match {
 
 std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record) {
     std::vector<uint32_t> spawned;
@@ -11,4 +11,4 @@ std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record) {
     return spawned;
 }
 
-}  // namespace arena::replay
+}  // namespace arena::match

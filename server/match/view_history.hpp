@@ -12,7 +12,7 @@
 #include "protocol/delta/quantize.hpp"
 #include "server/world/body.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 // The ring slot of a tick: snapshot ticks are multiples of one interval, so consecutive
 // snapshots take consecutive slots.
@@ -55,4 +55,4 @@ private:
     std::vector<entry> entries_;
 };
 
-}  // namespace arena::net
+}  // namespace arena::match

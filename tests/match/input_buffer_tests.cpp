@@ -1,10 +1,10 @@
 #include <catch2/catch.hpp>
 
-#include "server/net/input_buffer.hpp"
+#include "server/match/input_buffer.hpp"
 
-using namespace arena::net;
+using namespace arena::match;
 
-TEST_CASE("each tick consumes one input in order", "[net][input]") {
+TEST_CASE("each tick consumes one input in order", "[match][input]") {
     input_buffer buffer(4);
     buffer.push({1, {0.1f, 0, 0}});
     buffer.push({2, {0.2f, 0, 0}});
@@ -14,7 +14,7 @@ TEST_CASE("each tick consumes one input in order", "[net][input]") {
     CHECK(buffer.last_consumed_sequence() == 2);
 }
 
-TEST_CASE("an empty buffer repeats the last input and counts an underrun", "[net][input]") {
+TEST_CASE("an empty buffer repeats the last input and counts an underrun", "[match][input]") {
     input_buffer buffer(4);
     buffer.push({7, {0.5f, -0.5f, 1}});
     buffer.consume();
@@ -25,7 +25,7 @@ TEST_CASE("an empty buffer repeats the last input and counts an underrun", "[net
     CHECK(buffer.underruns() == 1);
 }
 
-TEST_CASE("a full buffer drops its oldest input and counts an overflow", "[net][input]") {
+TEST_CASE("a full buffer drops its oldest input and counts an overflow", "[match][input]") {
     input_buffer buffer(2);
     for (uint32_t s = 1; s <= 5; ++s) buffer.push({s, {}});
     CHECK(buffer.overflows() == 3);

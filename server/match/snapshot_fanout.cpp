@@ -1,11 +1,11 @@
-#include "server/net/snapshot_fanout.hpp"
+#include "server/match/snapshot_fanout.hpp"
 
 #include <algorithm>
 #include <numeric>
 
-#include "server/net/body_state.hpp"
+#include "server/match/body_state.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 namespace delta = protocol::delta;
 
@@ -114,4 +114,4 @@ std::span<const uint8_t> snapshot_fanout::full_frame(uint32_t body_id, uint32_t 
     return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_);
 }
 
-}  // namespace arena::net
+}  // namespace arena::match

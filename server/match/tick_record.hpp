@@ -1,6 +1,6 @@
 #pragma once
 // Everything that changes a world in one tick besides time itself: who joined, who left, and
-// the input each player's body consumed. The server applies ticks through apply_tick, and a
+// the input each player's body consumed. The match applies ticks through apply_tick, and a
 // replay applies the recorded ticks through the same function, so the two cannot drift apart.
 #include <cstdint>
 #include <vector>
@@ -8,7 +8,7 @@
 #include "server/world/input.hpp"
 #include "server/world/world.hpp"
 
-namespace arena::replay {
+namespace arena::match {
 
 struct tick_record {
     uint32_t tick = 0;             // the world's tick before this step
@@ -21,4 +21,4 @@ struct tick_record {
 // Returns the body id spawned for each join, in order (0 when the world was full).
 std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record);
 
-}  // namespace arena::replay
+}  // namespace arena::match

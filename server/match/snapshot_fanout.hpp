@@ -7,7 +7,7 @@
 // A client's view is its own body and every body within view_radius of it, found through a
 // grid index built once per tick that sends snapshots (server/world/view_index.hpp).
 //
-// Delta clients are spread over the ticks between two snapshots (game.cpp), so the fan-out
+// Delta clients are spread over the ticks between two snapshots (match.cpp), so the fan-out
 // runs every tick for a share of them: each piece of per-tick work (quantising, indexing, the
 // shared frame) is done on first use in that tick.
 #include <cstdint>
@@ -17,11 +17,11 @@
 #include "protocol/delta/codec.hpp"
 #include "protocol/delta/shared_encoder.hpp"
 #include "protocol/snapshot.hpp"
-#include "server/net/view_history.hpp"
+#include "server/match/view_history.hpp"
 #include "server/world/view_index.hpp"
 #include "server/world/world.hpp"
 
-namespace arena::net {
+namespace arena::match {
 
 struct fanout_config {
     float view_radius = 0;  // m; 0: the whole world
@@ -98,4 +98,4 @@ private:
     fanout_counters counters_;
 };
 
-}  // namespace arena::net
+}  // namespace arena::match

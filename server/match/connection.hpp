@@ -1,0 +1,34 @@
+#pragma once
+// How the match sees a client: a connection it was handed by a transport. It can send frames
+// to it, replace its pending snapshot, close it with a last word, and name its peer. The match
+// never touches a socket, so it is tested (and fuzzed, and simulated) without one. A
+// transport (server/match/) implements this once per kind of link.
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "protocol/messages.hpp"
+#include "protocol/snapshot.hpp"
+
+namespace arena::match {
+
+class connection {
+public:
+    virtual ~connection() = default;
+    // A control message (Welcome, Pong, Reject, Bye): always delivered, in order.
+    virtual void send(protocol::frame_bytes frame) = 0;
+    // The newest snapshot with this client's ack: replaces one that is still unsent.
+    virtual void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) = 0;
+    // A snapshot frame built for this client alone (a delta, or its own view): copied, and
+    // replaces one that is still unsent, as above.
+    virtual void send_snapshot_frame(std::span<const uint8_t> frame) = 0;
+    // Sends Reject(code, reason) as the last word, then closes.
+    virtual void close(protocol::RejectCode code, std::string_view reason) = 0;
+    // Sends Bye(reason) as the last word, then closes (another connection took this player
+    // over, the server shuts down).
+    virtual void close_with_bye(std::string_view reason) = 0;
+    // The peer's address as the logs show it ("127.0.0.1:52814"; "" when unknown).
+    virtual std::string_view peer() const = 0;
+};
+
+}  // namespace arena::match
