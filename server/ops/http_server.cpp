@@ -31,6 +31,18 @@ struct read_result {
     std::optional<http_error> error;
 };
 
+// Beast parses only CRLF line endings: a request with bare LF ones ("GET / HTTP/1.1\n\n", as
+// typed into nc) got a vague 400 or, when Beast waited for a CRLF CRLF that never came, silence
+// until the deadline. Such a head is refused at once, with the reason. Only the head is looked
+// at (up to the first CRLF CRLF): a body may hold any bytes.
+bool has_bare_lf(const beast::flat_buffer& buffer) {
+    const std::string_view text(static_cast<const char*>(buffer.data().data()), buffer.size());
+    const std::string_view head = text.substr(0, text.find("\r\n\r\n"));
+    for (size_t i = 0; i < head.size(); ++i)
+        if (head[i] == '\n' && (i == 0 || head[i - 1] != '\r')) return true;
+    return false;
+}
+
 // Beast refuses any version but 1.0 and 1.1 as malformed; a well-formed other version ("HTTP/2.0")
 // deserves 505, which says what the client can do about it.
 http_error version_error(const beast::flat_buffer& buffer) {
@@ -68,6 +80,8 @@ boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, size_t 
         const size_t n = co_await stream.async_read_some(buffer.prepare(room), use_ec(ec));
         if (ec) co_return read_result{};
         buffer.commit(n);
+        if (has_bare_lf(buffer))
+            co_return read_result{{}, http_error{400, "bare LF line ending: HTTP lines end in CRLF"}};
         buffer.consume(parser.put(buffer.data(), ec));
         if (!ec && parser.is_header_done()) co_return check_head(parser);
         if (ec == http::error::header_limit || (ec == http::error::need_more && buffer.size() >= limit))

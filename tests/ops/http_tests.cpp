@@ -106,6 +106,23 @@ TEST_CASE("ops http: malformed request heads get 400 or 505 over the wire, the q
     CHECK(f.scrapes == 1);
 }
 
+TEST_CASE("ops http: a request with bare LF line endings gets 400 at once, not silence until the deadline",
+          "[ops][http]") {
+    endpoint_fixture f;  // 5 s to send a head, as in production
+    for (const std::string head : {"GET /healthz HTTP/1.1\n\n", "GET /healthz HTTP/1.1\nHost: a\n\n",
+                                   "GET /healthz HTTP/1.1\r\nHost: a\n\r\n", "GET /healthz HTTP/1.0\n"}) {
+        const auto start = std::chrono::steady_clock::now();
+        const std::string response = http_exchange(f.server.port(), head);
+        const auto waited = std::chrono::steady_clock::now() - start;
+        CHECK(status_of(response) == 400);
+        CHECK(body_of(response) == "bare LF line ending: HTTP lines end in CRLF\n");
+        CHECK(waited < std::chrono::milliseconds(1000));
+    }
+    // A head still arriving is not refused for a CR that is waiting for its LF.
+    CHECK(http_exchange(f.server.port(), "GET /healthz HTTP/1.1\r", std::chrono::milliseconds(300)).empty());
+    CHECK(f.scrapes == 0);
+}
+
 TEST_CASE("ops http: unknown paths are 404, other methods 405, garbage 400", "[ops][http]") {
     endpoint_fixture f;
     CHECK(status_of(http_get(f.server.port(), "/")) == 404);
