@@ -4,6 +4,7 @@
 #include <boost/beast/http.hpp>
 #include <cctype>
 #include <chrono>
+#include <list>
 #include <optional>
 
 namespace arena::ops {
@@ -11,6 +12,45 @@ namespace arena::ops {
 namespace beast = boost::beast;
 namespace http = beast::http;
 using boost::asio::ip::tcp;
+
+// One connection: its stream, and its place in the queue of those still sending their head.
+struct connection {
+    explicit connection(tcp::socket socket) : stream(std::move(socket)) {}
+    beast::tcp_stream stream;
+    std::list<std::shared_ptr<connection>>::iterator waiting_at;
+    bool waiting = false;  // in shared_state::waiting
+    bool counted = true;   // in shared_state::open (an evicted connection no longer is)
+};
+
+struct http_server::shared_state {
+    bool alive = true;
+    uint32_t open = 0;
+    uint64_t evicted = 0;
+    // Connections still sending their request head, oldest first: the ones a new connection may
+    // replace when all slots are taken, so that 32 idle sockets cannot keep a health probe out.
+    std::list<std::shared_ptr<connection>> waiting;
+
+    void stop_waiting(connection& c) {
+        if (!c.waiting) return;
+        waiting.erase(c.waiting_at);
+        c.waiting = false;
+    }
+    void uncount(connection& c) {
+        if (!c.counted) return;
+        --open;
+        c.counted = false;
+    }
+    // Closes the oldest connection still sending its head; false when there is none.
+    bool evict_oldest() {
+        if (waiting.empty()) return false;
+        const auto oldest = waiting.front();
+        stop_waiting(*oldest);
+        uncount(*oldest);
+        ++evicted;
+        oldest->stream.close();  // its read ends with operation_aborted: nothing to answer
+        return true;
+    }
+};
 
 namespace {
 
@@ -70,7 +110,12 @@ read_result check_head(const http::request_parser<http::empty_body>& parser) {
 }
 
 // Reads one request head of at most `limit` bytes, feeding Beast's parser as bytes arrive.
-boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, size_t limit) {
+// Deadlines: the first byte within first_byte_timeout_ns (an idle socket goes soon), the whole
+// head within read_timeout_ns of the connection's start.
+boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, const http_server_options& options) {
+    const size_t limit = options.max_request_bytes;
+    const auto started = std::chrono::steady_clock::now();
+    stream.expires_after(std::chrono::nanoseconds(std::min(options.first_byte_timeout_ns, options.read_timeout_ns)));
     http::request_parser<http::empty_body> parser;
     parser.header_limit(static_cast<uint32_t>(limit));
     beast::flat_buffer buffer(limit);
@@ -79,6 +124,7 @@ boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, size_t 
         const size_t room = std::min<size_t>(buffer.max_size() - buffer.size(), 2048);
         const size_t n = co_await stream.async_read_some(buffer.prepare(room), use_ec(ec));
         if (ec) co_return read_result{};
+        if (buffer.size() == 0) stream.expires_at(started + std::chrono::nanoseconds(options.read_timeout_ns));
         buffer.commit(n);
         if (has_bare_lf(buffer))
             co_return read_result{{}, http_error{400, "bare LF line ending: HTTP lines end in CRLF"}};
@@ -107,33 +153,47 @@ http::response<http::string_body> to_beast(const http_response& r) {
 }
 
 boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> state, http_handlers handlers,
-                                   http_server_options options, tcp::socket socket) {
+                                   http_server_options options, std::shared_ptr<connection> conn) {
     ++state->open;
-    beast::tcp_stream stream(std::move(socket));
-    stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
-    const read_result head = co_await read_head(stream, options.max_request_bytes);
+    conn->waiting_at = state->waiting.insert(state->waiting.end(), conn);
+    conn->waiting = true;
+    const read_result head = co_await read_head(conn->stream, options);
+    state->stop_waiting(*conn);
 
     std::optional<http_response> reply;
     if (head.request)
         reply = state->alive ? route(*head.request, handlers) : plain(503, "shutting down\n");
     else if (head.error)
         reply = plain(head.error->status, head.error->reason + "\n");
-    // Otherwise the peer went away or the deadline passed: nothing to answer.
+    // Otherwise the peer went away, the deadline passed or a newer connection took the slot:
+    // nothing to answer.
     boost::system::error_code ec;
     if (reply) {
-        stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
+        conn->stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
         auto response = to_beast(*reply);
-        co_await http::async_write(stream, response, use_ec(ec));
-        stream.socket().shutdown(tcp::socket::shutdown_send, ec);
+        co_await http::async_write(conn->stream, response, use_ec(ec));
+        conn->stream.socket().shutdown(tcp::socket::shutdown_send, ec);
     }
-    stream.socket().close(ec);
-    --state->open;
+    conn->stream.socket().close(ec);
+    state->uncount(*conn);
 }
 
 }  // namespace
 
 http_server::http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers)
-    : io_(io), options_(std::move(options)), handlers_(std::move(handlers)), acceptor_(io) {}
+    : io_(io),
+      options_(std::move(options)),
+      handlers_(std::move(handlers)),
+      acceptor_(io),
+      state_(std::make_shared<shared_state>()) {}
+
+uint32_t http_server::open_connections() const {
+    return state_->open;
+}
+
+uint64_t http_server::evicted_connections() const {
+    return state_->evicted;
+}
 
 http_server::~http_server() {
     state_->alive = false;
@@ -161,10 +221,13 @@ boost::asio::awaitable<void> http_server::accept_loop() {
         boost::system::error_code ec;
         tcp::socket socket = co_await acceptor_.async_accept(use_ec(ec));
         if (!state->alive || ec == boost::asio::error::operation_aborted || !acceptor_.is_open()) co_return;
-        if (ec) continue;                                       // e.g. EMFILE: the next accept may succeed
-        if (state->open >= options_.max_connections) continue;  // the socket closes as it goes
+        if (ec) continue;  // e.g. EMFILE: the next accept may succeed
+        // Full: the oldest connection still sending its head makes room; when every slot is
+        // being answered, the new socket closes as it goes out of scope.
+        if (state->open >= options_.max_connections && !state->evict_oldest()) continue;
         // Copies: the server may be destroyed while this connection is still being answered.
-        boost::asio::co_spawn(io_, serve(state, handlers_, options_, std::move(socket)), boost::asio::detached);
+        boost::asio::co_spawn(io_, serve(state, handlers_, options_, std::make_shared<connection>(std::move(socket))),
+                              boost::asio::detached);
     }
 }
 

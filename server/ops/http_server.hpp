@@ -15,10 +15,13 @@ namespace arena::ops {
 
 struct http_server_options {
     std::string bind = "127.0.0.1";
-    uint16_t port = 0;                        // 0: any free port (see port())
-    size_t max_request_bytes = 8 * 1024;      // request line + headers; more gets 431
-    int64_t read_timeout_ns = 5'000'000'000;  // the whole head must arrive within this
-    uint32_t max_connections = 32;            // more are closed at once
+    uint16_t port = 0;                              // 0: any free port (see port())
+    size_t max_request_bytes = 8 * 1024;            // request line + headers; more gets 431
+    int64_t read_timeout_ns = 5'000'000'000;        // the whole head must arrive within this
+    int64_t first_byte_timeout_ns = 1'000'000'000;  // and its first byte within this
+    // At this many open connections, a new one closes the oldest that is still sending its head
+    // (an idle or slow client) to take its place; when every one is being answered, it is closed.
+    uint32_t max_connections = 32;
 };
 
 class http_server {
@@ -33,12 +36,13 @@ public:
     void stop();
     uint16_t port() const { return port_; }
 
+    // Connections counted, and connections closed to make room for newer ones, since start.
+    uint32_t open_connections() const;
+    uint64_t evicted_connections() const;
+
     // Shared with the connection coroutines, so that one still running after the server is
-    // gone finds `alive` false instead of a dangling pointer.
-    struct shared_state {
-        bool alive = true;
-        uint32_t open = 0;
-    };
+    // gone finds `alive` false instead of a dangling pointer. Defined in http_server.cpp.
+    struct shared_state;
 
 private:
     boost::asio::awaitable<void> accept_loop();
@@ -48,7 +52,7 @@ private:
     http_handlers handlers_;
     boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
-    std::shared_ptr<shared_state> state_ = std::make_shared<shared_state>();
+    std::shared_ptr<shared_state> state_;
 };
 
 }  // namespace arena::ops

@@ -157,6 +157,55 @@ TEST_CASE("ops http: a client that never finishes its request is cut off after t
     CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
 }
 
+TEST_CASE("ops http: 40 idle connections do not lock /healthz out: the oldest idle one makes room", "[ops][http]") {
+    http_server_options options;
+    options.first_byte_timeout_ns = 10'000'000'000;  // only eviction can make room here
+    endpoint_fixture f(options);
+    std::vector<int> idle;
+    for (int i = 0; i < 40; ++i) idle.push_back(arena::test::open_idle_connection(f.server.port()));
+    // Each of the last 8 took the slot of one of the first 8.
+    CHECK(arena::test::closed_by_peer(idle[0], std::chrono::milliseconds(1000)));
+    CHECK(arena::test::closed_by_peer(idle[7], std::chrono::milliseconds(1000)));
+    for (int round = 0; round < 3; ++round) {
+        const auto start = std::chrono::steady_clock::now();
+        CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
+        CHECK(std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1000));
+    }
+    // The first probe took the oldest idle slot and gave it back when answered, so the next
+    // ones found it free; the newest idle connections are still open.
+    CHECK(arena::test::closed_by_peer(idle[8], std::chrono::milliseconds(200)));
+    CHECK_FALSE(arena::test::closed_by_peer(idle[39], std::chrono::milliseconds(50)));
+    std::uint32_t open = 0;
+    uint64_t evicted = 0;
+    f.runner.run_on_io([&] {
+        open = f.server.open_connections();
+        evicted = f.server.evicted_connections();
+    });
+    CHECK(open <= options.max_connections);
+    CHECK(evicted == 8 + 1);
+    for (int fd : idle) close(fd);
+}
+
+TEST_CASE("ops http: a connection that sends nothing is closed after the first-byte timeout", "[ops][http]") {
+    http_server_options options;
+    options.first_byte_timeout_ns = 200'000'000;
+    endpoint_fixture f(options);
+    const int idle = arena::test::open_idle_connection(f.server.port());
+    const int slow = arena::test::open_idle_connection(f.server.port());
+    REQUIRE(send(slow, "GET /healthz HTTP/1.1\r\n", 23, MSG_NOSIGNAL) == 23);
+    const auto start = std::chrono::steady_clock::now();
+    CHECK(arena::test::closed_by_peer(idle, std::chrono::milliseconds(2000)));
+    const auto waited = std::chrono::steady_clock::now() - start;
+    CHECK(waited < std::chrono::milliseconds(1000));
+    // A client that has started its head gets the whole read timeout (5 s) to finish it.
+    CHECK_FALSE(arena::test::closed_by_peer(slow, std::chrono::milliseconds(300)));
+    REQUIRE(send(slow, "\r\n", 2, MSG_NOSIGNAL) == 2);
+    const std::string response = arena::test::read_until_closed(slow, std::chrono::milliseconds(2000));
+    CHECK(status_of(response) == 200);
+    close(idle);
+    close(slow);
+}
+
 TEST_CASE("ops http: arena-healthcheck exits 0 on 200 and 1 on 503 or no server", "[ops][http]") {
     endpoint_fixture f;
     const std::string probe = std::string(ARENA_BIN_DIR) +

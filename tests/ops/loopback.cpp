@@ -48,6 +48,14 @@ std::string http_exchange(uint16_t port, const std::string& request, std::chrono
         if (n <= 0) break;
         sent += static_cast<size_t>(n);
     }
+    std::string response =
+        read_until_closed(fd, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock_type::now()));
+    close(fd);
+    return response;
+}
+
+std::string read_until_closed(int fd, std::chrono::milliseconds timeout) {
+    const auto deadline = clock_type::now() + timeout;
     std::string response;
     char buffer[4096];
     while (readable(fd, deadline)) {
@@ -55,7 +63,6 @@ std::string http_exchange(uint16_t port, const std::string& request, std::chrono
         if (n <= 0) break;
         response.append(buffer, static_cast<size_t>(n));
     }
-    close(fd);
     return response;
 }
 
@@ -66,6 +73,22 @@ std::string http_get(uint16_t port, const std::string& path) {
 int status_of(const std::string& response) {
     if (response.size() < 12 || response.compare(0, 7, "HTTP/1.") != 0) return 0;
     return std::stoi(response.substr(9, 3));
+}
+
+int open_idle_connection(uint16_t port) {
+    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr = loopback(port);
+    if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+bool closed_by_peer(int fd, std::chrono::milliseconds wait) {
+    if (!readable(fd, clock_type::now() + wait)) return false;
+    char byte = 0;
+    return recv(fd, &byte, 1, MSG_DONTWAIT) <= 0;
 }
 
 uint16_t free_port() {

@@ -22,6 +22,12 @@ std::string http_exchange(uint16_t port, const std::string& request,
 std::string http_get(uint16_t port, const std::string& path);
 // The status code of a raw response, 0 when none.
 int status_of(const std::string& response);
+// A connection to 127.0.0.1:port that sends nothing (-1 when connect failed); the caller closes it.
+int open_idle_connection(uint16_t port);
+// Everything the peer sends on `fd` until it closes (or the timeout passes).
+std::string read_until_closed(int fd, std::chrono::milliseconds timeout);
+// True when the peer closed `fd` (or reset it) within `wait`; false while it stays open.
+bool closed_by_peer(int fd, std::chrono::milliseconds wait);
 // A port nobody listens on right now (bound to 0, then released).
 uint16_t free_port();
 
