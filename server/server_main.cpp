@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 1024u))
         ->capture_default_str();
     ops::ops_options ops_options;
-    ops::add_ops_flags(app, ops_options);  // --metrics-port, --agones, --agones-port, --agones-shutdown-timeout
+    ops::add_ops_flags(app, ops_options);  // --metrics-port, --metrics-bind, --agones, --agones-port, ...
     double drain_grace_s = 1;
     app.add_option("--drain-grace", drain_grace_s, "seconds clients get to read their Bye at shutdown (default 1)")
         ->check(cli::finite_non_negative);

@@ -1,5 +1,6 @@
 #include "server/ops/ops_flags.hpp"
 
+#include <boost/asio/ip/address.hpp>
 #include <charconv>
 #include <cstring>
 
@@ -8,9 +9,20 @@ namespace arena::ops {
 void add_ops_flags(CLI::App& app, ops_options& options) {
     app.add_option_function<uint16_t>(
            "--metrics-port", [&options](uint16_t port) { options.metrics_port = port; },
-           "serve /metrics and /healthz over HTTP on this port, at the --bind address (default: off; 0 picks a free "
-           "one)")
+           "serve /metrics and /healthz over HTTP on this port, at the --metrics-bind address (default: off; 0 "
+           "picks a free one)")
         ->type_name("PORT");
+    app.add_option("--metrics-bind", options.metrics_bind,
+                   "the address /metrics and /healthz listen on, e.g. a private one while --bind is 0.0.0.0 "
+                   "(default: the --bind address)")
+        ->type_name("ADDR")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                boost::system::error_code ec;
+                boost::asio::ip::make_address(text, ec);
+                return ec ? "not an IP address: '" + text + "'" : std::string();
+            },
+            "IP address"));
     app.add_flag(
         "--agones", options.agones,
         "talk to the Agones SDK sidecar: ready, health pings, shutdown (default: on when AGONES_SDK_HTTP_PORT is set)");

@@ -19,12 +19,12 @@ std::string ops_service::metrics_text() const {
 void ops_service::start_after_listening() {
     if (options_.metrics_port && !http_) {
         http_server_options http_options;
-        http_options.bind = options_.bind;
+        http_options.bind = metrics_address();
         http_options.port = *options_.metrics_port;
         http_ = std::make_unique<http_server>(io_, http_options,
                                               http_handlers{[this] { return metrics_text(); }, healthy_});
         http_->start();
-        if (log_) log_("metrics on http://" + options_.bind + ":" + std::to_string(http_->port()) + "/metrics");
+        if (log_) log_("metrics on http://" + metrics_address() + ":" + std::to_string(http_->port()) + "/metrics");
     }
     if (options_.agones && !agones_) {
         agones_ = std::make_unique<agones_client>(io_, options_.agones_sdk, healthy_, log_);

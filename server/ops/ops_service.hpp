@@ -16,7 +16,8 @@
 namespace arena::ops {
 
 struct ops_options {
-    std::string bind = "127.0.0.1";        // the game's --bind: one address for everything
+    std::string bind = "127.0.0.1";        // the game's --bind
+    std::string metrics_bind;              // --metrics-bind: the endpoint's own address; "" = bind
     std::optional<uint16_t> metrics_port;  // unset: no HTTP endpoint; 0: any free port
     bool agones = false;                   // talk to the Agones SDK sidecar
     agones_options agones_sdk{};
@@ -37,6 +38,10 @@ public:
 
     // The /metrics body now, process figures included.
     std::string metrics_text() const;
+    // The address the endpoint listens on: --metrics-bind, else --bind.
+    const std::string& metrics_address() const {
+        return options_.metrics_bind.empty() ? options_.bind : options_.metrics_bind;
+    }
     // The bound metrics port (0 when the endpoint is off).
     uint16_t metrics_port() const { return http_ ? http_->port() : 0; }
     const ops_options& options() const { return options_; }

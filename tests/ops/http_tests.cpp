@@ -13,6 +13,8 @@
 #include "server/ops/http_routes.hpp"
 #include "server/ops/http_server.hpp"
 #include "server/ops/metrics.hpp"
+#include "server/ops/ops_flags.hpp"
+#include "server/ops/ops_service.hpp"
 #include "tests/ops/loopback.hpp"
 
 using namespace arena::ops;
@@ -256,4 +258,53 @@ TEST_CASE("ops http: arena-healthcheck prints what it got, exits 2 on usage erro
     CHECK(silent.output.find("-> 0") != std::string::npos);
     CHECK(waited >= std::chrono::milliseconds(250));
     CHECK(waited < std::chrono::milliseconds(2000));
+}
+
+TEST_CASE("ops http: --metrics-bind puts the endpoints on their own address, apart from --bind", "[ops][http]") {
+    ops_options options;
+    options.bind = "127.0.0.1";
+    options.metrics_bind = "127.0.0.2";  // a private address, while the game is on --bind
+    options.metrics_port = 0;
+    boost::asio::io_context io;
+    std::vector<std::string> log;
+    ops_service ops(
+        io, options, [] { return server_metrics{}; }, [] { return true; },
+        [&log](const std::string& line) { log.push_back(line); });
+    io_thread runner(io);
+    runner.run_on_io([&] { ops.start_after_listening(); });
+    const uint16_t port = ops.metrics_port();
+    REQUIRE(port != 0);
+    CHECK(status_of(arena::test::http_get_at("127.0.0.2", port, "/healthz")) == 200);
+    CHECK(arena::test::http_get_at("127.0.0.1", port, "/healthz").empty());  // nobody there
+    REQUIRE_FALSE(log.empty());
+    CHECK(log.front() == "metrics on http://127.0.0.2:" + std::to_string(port) + "/metrics");
+}
+
+TEST_CASE("ops flags: --metrics-bind takes an IP address and defaults to --bind", "[ops][http]") {
+    auto parse = [](std::vector<std::string> args, ops_options& o) {
+        CLI::App app;
+        add_ops_flags(app, o);
+        std::vector<const char*> argv{"arena-server"};
+        for (auto& a : args) argv.push_back(a.c_str());
+        app.parse(static_cast<int>(argv.size()), const_cast<char**>(argv.data()));
+    };
+    boost::asio::io_context io;
+    ops_options plain;
+    plain.bind = "0.0.0.0";
+    parse({"--metrics-port", "9100"}, plain);
+    CHECK(ops_service(io, plain, {}, {}).metrics_address() == "0.0.0.0");
+
+    ops_options private_address;
+    private_address.bind = "0.0.0.0";
+    parse({"--metrics-port", "9100", "--metrics-bind", "10.0.0.5"}, private_address);
+    CHECK(private_address.metrics_bind == "10.0.0.5");
+    CHECK(ops_service(io, private_address, {}, {}).metrics_address() == "10.0.0.5");
+
+    ops_options v6;
+    parse({"--metrics-bind", "::1"}, v6);
+    CHECK(v6.metrics_bind == "::1");
+
+    ops_options bad;
+    CHECK_THROWS_AS(parse({"--metrics-bind", "localhost"}, bad), CLI::ValidationError);
+    CHECK_THROWS_AS(parse({"--metrics-bind", "10.0.0.300"}, bad), CLI::ValidationError);
 }

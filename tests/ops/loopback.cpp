@@ -32,10 +32,11 @@ bool readable(int fd, clock_type::time_point deadline) {
 
 }  // namespace
 
-std::string http_exchange(uint16_t port, const std::string& request, std::chrono::milliseconds timeout) {
+namespace {
+
+std::string exchange_at(sockaddr_in addr, const std::string& request, std::chrono::milliseconds timeout) {
     const auto deadline = clock_type::now() + timeout;
     const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr = loopback(port);
     if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
         close(fd);
         return "";
@@ -52,6 +53,19 @@ std::string http_exchange(uint16_t port, const std::string& request, std::chrono
         read_until_closed(fd, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock_type::now()));
     close(fd);
     return response;
+}
+
+}  // namespace
+
+std::string http_exchange(uint16_t port, const std::string& request, std::chrono::milliseconds timeout) {
+    return exchange_at(loopback(port), request, timeout);
+}
+
+std::string http_get_at(const std::string& ipv4, uint16_t port, const std::string& path) {
+    sockaddr_in addr = loopback(port);
+    if (inet_pton(AF_INET, ipv4.c_str(), &addr.sin_addr) != 1) throw std::runtime_error("not an IPv4 address");
+    return exchange_at(addr, "GET " + path + " HTTP/1.1\r\nHost: " + ipv4 + "\r\nConnection: close\r\n\r\n",
+                       std::chrono::milliseconds(3000));
 }
 
 std::string read_until_closed(int fd, std::chrono::milliseconds timeout) {

@@ -20,6 +20,8 @@ namespace arena::test {
 std::string http_exchange(uint16_t port, const std::string& request,
                           std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
 std::string http_get(uint16_t port, const std::string& path);
+// The same to another address (127.0.0.2: the whole 127/8 is loopback on Linux).
+std::string http_get_at(const std::string& ipv4, uint16_t port, const std::string& path);
 // The status code of a raw response, 0 when none.
 int status_of(const std::string& response);
 // A connection to 127.0.0.1:port that sends nothing (-1 when connect failed); the caller closes it.
