@@ -80,7 +80,14 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     };
     r.rejects = m.rejects;
     r.disconnects = m.disconnects;
-    r.exit_code = r.failed == 0 ? 0 : 1;
+    // Bots played (joined, behaving) yet no snapshot ever confirmed a prediction: the run
+    // measured nothing and must not pass. (Masses of 1e-45 once put NaN in every snapshot,
+    // and the bots exited 0 with an empty prediction figure.)
+    std::uint32_t played = 0;
+    for (const bot_outcome& o : outcomes) played += o.joined && !o.misbehaving ? 1 : 0;
+    const bool no_samples = played > 0 && m.prediction_error_m.empty();
+    if (no_samples) ++r.failures[no_prediction_samples];
+    r.exit_code = r.failed == 0 && !no_samples ? 0 : 1;
     return r;
 }
 

@@ -13,6 +13,10 @@
 
 namespace arena::bots {
 
+// The failure a run reports when bots played but no prediction was ever measured.
+inline constexpr const char* no_prediction_samples =
+    "no prediction samples: bots played, but no snapshot confirmed a prediction";
+
 struct final_report {
     double seconds = 0;  // wall time of the run
     std::uint32_t bots = 0;

@@ -1,5 +1,7 @@
 #include "protocol/decode.hpp"
 
+#include "protocol/snapshot.hpp"
+
 #include <cmath>
 #include <string>
 
@@ -98,6 +100,12 @@ result<snapshot_view> decode_snapshot(const Message& message) {
         // The Verifier checked the vector lies inside the frame, 4-byte aligned as BodyState
         // requires; structs are stored exactly as the C++ type lays them out.
         view.bodies = {reinterpret_cast<const BodyState*>(bodies->Data()), bodies->size()};
+        // A server never sends NaN or an infinity (snapshot.cpp); one that does is broken, and a
+        // client must not predict from it.
+        for (const BodyState& b : view.bodies) {
+            if (const char* field = non_finite_field(b))
+                return result<snapshot_view>::failure("body " + std::to_string(b.id()) + " has a non-finite " + field);
+        }
     }
     return result<snapshot_view>::success(view);
 }

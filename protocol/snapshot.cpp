@@ -1,15 +1,45 @@
 #include "protocol/snapshot.hpp"
 
+#include <atomic>
 #include <cassert>
+#include <cmath>
 
 #include "protocol/messages.hpp"
 
 namespace arena::protocol {
 namespace {
 
+std::atomic<std::uint64_t> replaced_total{0};
+
+bool finite(float v) {
+    return std::isfinite(v);
+}
+
+// `b` with each non-finite field written as 0; adds to `replaced` how many there were.
+BodyState finite_copy(const BodyState& b, std::uint64_t& replaced) {
+    const auto fix = [&replaced](float v) {
+        if (finite(v)) return v;
+        ++replaced;
+        return 0.0f;
+    };
+    return {b.id(),      b.owner(),   fix(b.x()),     fix(b.y()),
+            fix(b.vx()), fix(b.vy()), fix(b.angle()), fix(b.angular_velocity())};
+}
+
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,
                     std::span<const BodyState> bodies) {
     fbb.Clear();  // keeps the allocated block: no allocation once the builder is warm
+    // The rare broken world: a finite copy (allocates; never on a healthy server's path).
+    std::vector<BodyState> repaired;
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        if (non_finite_field(bodies[i]) == nullptr) continue;
+        std::uint64_t replaced = 0;
+        repaired.assign(bodies.begin(), bodies.end());
+        for (BodyState& b : repaired) b = finite_copy(b, replaced);
+        replaced_total.fetch_add(replaced, std::memory_order_relaxed);
+        bodies = repaired;
+        break;
+    }
     // One PushBytes of bodies.size() * 32 bytes, no per-body work.
     const auto body_vector = fbb.CreateVectorOfStructs(bodies.data(), bodies.size());
     finish_message(fbb, Payload::Snapshot, CreateSnapshot(fbb, tick, ack_sequence, body_vector).Union());
@@ -20,6 +50,20 @@ std::span<const std::uint8_t> finished(const flatbuffers::FlatBufferBuilder& fbb
 }
 
 }  // namespace
+
+const char* non_finite_field(const BodyState& b) noexcept {
+    if (!finite(b.x())) return "x";
+    if (!finite(b.y())) return "y";
+    if (!finite(b.vx())) return "vx";
+    if (!finite(b.vy())) return "vy";
+    if (!finite(b.angle())) return "angle";
+    if (!finite(b.angular_velocity())) return "angular_velocity";
+    return nullptr;
+}
+
+std::uint64_t non_finite_values_replaced() noexcept {
+    return replaced_total.load(std::memory_order_relaxed);
+}
 
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                               std::uint32_t ack_sequence, std::span<const BodyState> bodies) {

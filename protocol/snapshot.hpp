@@ -10,6 +10,19 @@
 
 namespace arena::protocol {
 
+// No snapshot frame carries a non-finite number. The world should never produce one (config
+// bounds, server/config/), but should it diverge anyway, every encoder here writes each NaN
+// or infinity of a BodyState as 0, as the delta quantiser does (delta/quantize.hpp), and
+// counts it: the server reports the count loudly, and a client refuses such a snapshot
+// (decode_snapshot) rather than predict from it.
+
+// The first non-finite field of `b` ("x", "y", "vx", "vy", "angle", "angular_velocity"), or
+// nullptr when every field is finite.
+[[nodiscard]] const char* non_finite_field(const BodyState& b) noexcept;
+
+// Non-finite values written as 0 by every snapshot encoder of this process so far.
+[[nodiscard]] std::uint64_t non_finite_values_replaced() noexcept;
+
 // Clears fbb and encodes one finished Snapshot frame into it. Returns the frame, which lives
 // in fbb and stays valid until fbb is next cleared or destroyed.
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,

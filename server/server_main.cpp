@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <variant>
 
+#include "protocol/snapshot.hpp"
 #include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
@@ -166,6 +167,9 @@ int main(int argc, char** argv) {
         ops.on_match_end([&io] { io.stop(); });
         io.run();
         net::log_line("stopped after %u ticks", server.current_tick());
+        if (const uint64_t n = protocol::non_finite_values_replaced(); n > 0)  // protocol/snapshot.hpp
+            net::log_line("error: the world diverged: %llu non-finite values were sent as 0 (check the world config)",
+                          static_cast<unsigned long long>(n));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "arena-server: %s\n", e.what());
         return 1;

@@ -1,6 +1,7 @@
 #include "server/config/config_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -147,6 +148,9 @@ void read_rocks(const json& j, const std::string& path, world::rock_config& rock
 
 void read_fluids(const json& j, const std::string& path, std::vector<world::fluid_region>& fluids) {
     if (!j.is_array()) throw bad_field{"field '" + path + "' must be an array"};
+    if (j.size() > max_fluid_regions)
+        throw bad_field{"field '" + path + "' must hold at most " + std::to_string(max_fluid_regions) +
+                        " regions, got " + std::to_string(j.size())};
     fluids.clear();
     for (size_t i = 0; i < j.size(); ++i) {
         world::fluid_region f;
@@ -159,21 +163,88 @@ void read_fluids(const json& j, const std::string& path, std::vector<world::flui
     }
 }
 
-// Values that parse but would break the physics (a zero Δt, a negative radius).
+// Values that parse but would break the physics. Every physical field has an interval, wide
+// for any game and narrow enough that no product of them overflows a float: a mass of 1e-45
+// kg has an inverse of infinity, and NaN followed (it reached the wire). With these bounds a
+// body's mass, inertia and their inverses are finite (m ≤ 1e5·π·1e4² ≈ 3e13 kg; I ≥ ½·m·r²
+// with m ≥ 3e-9 kg and r ≥ 1e-3 m). The error names the field, its interval and the value.
+class range_checker {
+public:
+    // `value` in [lo, hi] (lo excluded when lo_open).
+    void field(const std::string& name, real value, double lo, double hi, const char* unit, bool lo_open = false) {
+        // Compared as floats, so that "dt": 0.0001 (9.99999975e-05 as a float) is in [1e-4, 1].
+        const double v = value;
+        const auto flo = static_cast<real>(lo), fhi = static_cast<real>(hi);
+        if ((lo_open ? value > flo : value >= flo) && value <= fhi) return;
+        throw bad_field{"field '" + name + "' must be in " + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) +
+                        "]" + (*unit ? " " : "") + unit + ", got " + number(v)};
+    }
+    void field(const std::string& name, const vec2& value, double lo, double hi, const char* unit) {
+        field(name + ".x", value.x(), lo, hi, unit);
+        field(name + ".y", value.y(), lo, hi, unit);
+    }
+    void material(const std::string& path, const world::body_material& m) {
+        field(path + ".density", m.density, 0, max_density, "kg/m²");
+        // 0 means "from the density"; a positive mass must be one a solver can invert.
+        if (m.mass != 0 && !(m.mass >= static_cast<real>(min_mass) && m.mass <= static_cast<real>(max_mass)))
+            throw bad_field{"field '" + path + ".mass' must be 0 (from the density) or in [" + number(min_mass) + ", " +
+                            number(max_mass) + "] kg, got " + number(m.mass)};
+        field(path + ".radius", m.radius, min_radius, max_radius, "m");
+        field(path + ".restitution", m.restitution, 0, 1, "");
+        field(path + ".drag_area", m.drag_area, 0, max_drag_area, "m²");
+    }
+
+    static constexpr double max_density = 1e5;                // kg/m³ (or kg/m² for bodies); osmium is 22 590 kg/m³
+    static constexpr double min_mass = 1e-3, max_mass = 1e9;  // kg
+    static constexpr double min_radius = 1e-3, max_radius = 1e4;  // m
+    static constexpr double max_drag_area = 1e4;                  // m²
+
+private:
+    static std::string number(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.9g", v);
+        return text;
+    }
+};
+
 void check_ranges(const world::world_config& c) {
-    auto require = [](bool ok, const char* what) {
-        if (!ok) throw bad_field{what};
-    };
-    require(c.dt > 0 && c.dt <= 1, "field 'dt' must be in (0, 1] seconds");
-    require(c.size.x() > 0 && c.size.y() > 0, "field 'size' must be positive");
-    require(c.player.radius > 0, "field 'player.radius' must be positive");
-    require(c.rocks.min_radius > 0 && c.rocks.min_radius <= c.rocks.max_radius,
-            "fields 'rocks.min_radius' and 'rocks.max_radius' must satisfy 0 < min <= max");
-    require(c.penetration_slop >= 0 && c.speculative_distance >= 0,
-            "fields 'penetration_slop' and 'speculative_distance' must not be negative");
-    require(c.air_density >= 0, "field 'air_density' must not be negative");
-    require(c.floor_friction >= 0, "field 'floor_friction' must not be negative");
-    require(c.velocity_iterations <= 100 && c.position_iterations <= 100, "solver iterations must be at most 100");
+    range_checker r;
+    r.field("dt", c.dt, 1e-4, 1, "s");
+    r.field("gravity", c.gravity, -1000, 1000, "m/s²");
+    r.field("air_density", c.air_density, 0, range_checker::max_density, "kg/m³");
+    if (c.fluids.size() > max_fluid_regions)
+        throw bad_field{"field 'fluids' must hold at most " + std::to_string(max_fluid_regions) + " regions, got " +
+                        std::to_string(c.fluids.size())};
+    for (size_t i = 0; i < c.fluids.size(); ++i) {
+        const std::string at = "fluids[" + std::to_string(i) + "]";
+        const world::fluid_region& f = c.fluids[i];
+        r.field(at + ".min", f.min, -max_world_size, max_world_size, "m");
+        r.field(at + ".max", f.max, -max_world_size, max_world_size, "m");
+        if (f.min.x() > f.max.x() || f.min.y() > f.max.y())
+            throw bad_field{"field '" + at + "' must have min <= max in both coordinates"};
+        r.field(at + ".density", f.density, 0, range_checker::max_density, "kg/m³");
+    }
+    r.field("size", c.size, 1, max_world_size, "m");
+    r.field("floor_friction", c.floor_friction, 0, 100, "");
+    r.field("angular_damping", c.angular_damping, 0, 1000, "1/s");
+    if (c.velocity_iterations > 100 || c.position_iterations > 100)
+        throw bad_field{"solver iterations must be at most 100"};
+    r.field("restitution_threshold", c.restitution_threshold, 0, 1e4, "m/s");
+    r.field("penetration_slop", c.penetration_slop, 0, 1, "m");
+    r.field("speculative_distance", c.speculative_distance, 0, 10, "m");
+    r.field("correction_fraction", c.correction_fraction, 0, 1, "");
+    r.field("max_correction", c.max_correction, 0, 100, "m");
+    if (c.max_bodies > max_world_bodies)
+        throw bad_field{"field 'max_bodies' must be at most " + std::to_string(max_world_bodies) + ", got " +
+                        std::to_string(c.max_bodies)};
+    r.material("player", c.player);
+    r.field("control.thrust_force", c.control.thrust_force, 0, 1e7, "N");
+    r.field("control.turn_torque", c.control.turn_torque, 0, 1e7, "N·m");
+    r.field("control.impulse", c.control.impulse, 0, 1e7, "N·s");
+    r.field("rocks.min_radius", c.rocks.min_radius, range_checker::min_radius, range_checker::max_radius, "m");
+    r.field("rocks.max_radius", c.rocks.max_radius, c.rocks.min_radius, range_checker::max_radius, "m");
+    r.field("rocks.max_speed", c.rocks.max_speed, 0, 1e4, "m/s");
+    r.material("rocks.material", c.rocks.material);
 }
 
 world::world_config read_world(const json& j) {
@@ -229,6 +300,9 @@ json material_json(const world::body_material& m) {
 }  // namespace
 
 std::variant<world::world_config, config_error> parse_config_json(std::string_view text) {
+    if (text.size() > max_config_bytes)
+        return config_error{"config of " + std::to_string(text.size()) + " bytes; at most " +
+                            std::to_string(max_config_bytes) + " are read"};
     json j;
     try {
         j = json::parse(text);

@@ -1,7 +1,10 @@
 #pragma once
 // World configs as JSON text: the format of --config files and of Welcome.world_config.
 // Every field is optional (missing fields keep their defaults, or the named preset's); an
-// unknown field, a wrong type or a non-finite number is an error naming the field.
+// unknown field, a wrong type, a non-finite number or a value outside the field's interval is
+// an error naming the field.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -9,6 +12,18 @@
 #include "server/world/config.hpp"
 
 namespace arena::config {
+
+// Bounds on a config's size. Its JSON travels in every Welcome, which a client accepts up to
+// protocol::max_server_frame_body (16 MiB): 400 000 fluid regions once made a 54 MB Welcome.
+// With at most max_fluid_regions regions, config_to_json() stays under 64 KiB whatever the
+// values (tests/config/config_limits_tests.cpp builds the largest); a text longer than
+// max_config_bytes is refused before it is parsed.
+inline constexpr size_t max_fluid_regions = 256;
+inline constexpr size_t max_config_bytes = 1 << 20;
+// Worlds up to 1000 km a side: positions are quantised to ±8 388 km on the wire
+// (protocol/delta/quantize.hpp), and every body fits the delta decoder's 2^20.
+inline constexpr double max_world_size = 1e6;  // m
+inline constexpr uint32_t max_world_bodies = 1u << 20;
 
 struct config_error {
     std::string message;  // one line: what is wrong and where

@@ -85,6 +85,7 @@ TEST_CASE("the run fails only for well-behaved bots that did not join or lost th
     CHECK_FALSE(misbehaving.failed());
 
     arena::bots::fleet_metrics metrics;
+    metrics.prediction_error_m.add(0.001);  // a measured run (see the next test for one without)
     const std::vector<bot_outcome> all{good, goodbye, misbehaving};
     const auto pass = arena::bots::make_report(metrics, all, 1.0);
     CHECK(pass.exit_code == 0);
@@ -94,4 +95,23 @@ TEST_CASE("the run fails only for well-behaved bots that did not join or lost th
     CHECK(fail.exit_code == 1);
     CHECK(fail.failures.at(dropped.reason) == 1);
     CHECK(arena::bots::to_json(fail)["exit_code"] == 1);
+}
+
+TEST_CASE("a run where bots played but no prediction was measured fails", "[bots][stats]") {
+    bot_outcome good;
+    good.joined = true;
+    good.ended = true;
+    bot_outcome misbehaving;
+    misbehaving.misbehaving = true;
+    misbehaving.joined = true;
+    arena::bots::fleet_metrics empty;
+    const std::vector<bot_outcome> played{good, misbehaving};
+    const auto r = arena::bots::make_report(empty, played, 1.0);
+    CHECK(r.exit_code == 1);
+    CHECK(r.failed == 0);  // no bot failed: the run did
+    CHECK(r.failures.at(arena::bots::no_prediction_samples) == 1);
+    CHECK(arena::bots::summary_table(r).find(arena::bots::no_prediction_samples) != std::string::npos);
+    // Only misbehaving bots, or nobody joined: nothing was there to measure.
+    const std::vector<bot_outcome> only_misbehaving{misbehaving};
+    CHECK(arena::bots::make_report(empty, only_misbehaving, 1.0).exit_code == 0);
 }
