@@ -90,6 +90,10 @@ void client_core::handle_frame(std::span<const std::uint8_t> frame, time_ns now)
     if (type == Payload::Pong && phase_ == phase::playing) return on_pong(message, now);
     if (type == Payload::Reject) return on_reject(message);
     if (type == Payload::Bye) return on_bye(message);
+    if (params_.unordered && phase_ == phase::joining && (type == Payload::Snapshot || type == Payload::Pong)) {
+        ++shared_.metrics().stale_messages;  // overtook the Welcome
+        return;
+    }
     end(end_kind::protocol_error, "unexpected " + std::string(protocol::payload_name(type)) + " from the server " +
                                       (phase_ == phase::joining ? "before Welcome" : "while playing"));
 }
@@ -126,6 +130,11 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     if (!decoded) return end(end_kind::protocol_error, "Snapshot: " + decoded.error);
     const protocol::snapshot_view& snapshot = decoded.value;
     fleet_metrics& m = shared_.metrics();
+    if (params_.unordered && snapshots_ > 0 && snapshot.tick <= last_snapshot_tick_) {
+        ++m.stale_messages;  // a duplicate, or overtaken by a newer one
+        return;
+    }
+    last_snapshot_tick_ = snapshot.tick;
     ++m.snapshots;
     ++m.interval_snapshots;
     if (snapshots_++ == 0) {

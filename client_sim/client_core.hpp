@@ -41,6 +41,10 @@ struct client_params {
     std::string token;  // Hello.token
     bool delta_snapshots = true;
     time_ns join_timeout = 10'000'000'000;  // ns from launch() to Welcome before giving up
+    // The transport carries messages that may be lost, duplicated or reordered (datagrams):
+    // a Snapshot or Pong before the Welcome, or a Snapshot no newer than the last one, is
+    // dropped (and counted), not a protocol error as it is on a stream.
+    bool unordered = false;
 };
 
 class client_core {
@@ -136,6 +140,7 @@ private:
     std::vector<protocol::BodyState> decoded_;         // the last delta's view as BodyState
     std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
     std::uint32_t last_ack_ = 0;
+    std::uint32_t last_snapshot_tick_ = 0;
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

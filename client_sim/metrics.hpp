@@ -45,6 +45,7 @@ struct fleet_metrics {
     std::uint64_t delta_errors = 0;         // deltas that did not decode (a server bug; the bot recovers)
     std::uint64_t delta_payload_bytes = 0;  // the codec's bytes inside those deltas (no framing)
     std::uint64_t delta_bodies = 0;         // bodies the decoded deltas held
+    std::uint64_t stale_messages = 0;       // on datagrams: snapshots duplicated or overtaken, dropped
 
     // The current second, for the progress line; rolled over by the fleet's reporter.
     std::uint64_t interval_bytes_in = 0;

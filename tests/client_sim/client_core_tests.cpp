@@ -235,3 +235,30 @@ TEST_CASE("the slow-reader fault stops reading once playing", "[client_core]") {
     core.on_frame(protocol::encode_welcome(welcome_for(*world::preset_by_name("asteroids"))), ms);
     CHECK_FALSE(core.reading());
 }
+
+TEST_CASE("on datagrams a snapshot that overtook the Welcome, or an older one, is dropped", "[client_core]") {
+    client_shared shared;
+    client_params p = params("b");
+    p.unordered = true;
+    client_core core(shared, p);
+    core.launch(0);
+    core.connected();
+    flatbuffers::FlatBufferBuilder fbb;
+    const protocol::BodyState own(7, 3, 100, 100, 1, 0, 0, 0);
+    const auto early = protocol::encode_snapshot(fbb, 101, 0, {&own, 1});
+    core.on_frame(early, ms);
+    REQUIRE(core.current() == client_core::phase::joining);
+    CHECK(shared.metrics().stale_messages == 1);
+    core.on_frame(protocol::encode_welcome(welcome_for(*world::preset_by_name("asteroids"))), 2 * ms);
+    REQUIRE(core.current() == client_core::phase::playing);
+    for (std::uint64_t tick = 1; tick <= 6; ++tick) core.on_tick(tick, tick * 16 * ms);
+    core.on_frame(protocol::encode_snapshot(fbb, 110, 4, {&own, 1}), 100 * ms);
+    CHECK(core.snapshots() == 1);
+    // A duplicate, then one overtaken (older tick, older ack): both dropped, the session goes on.
+    core.on_frame(protocol::encode_snapshot(fbb, 110, 4, {&own, 1}), 101 * ms);
+    core.on_frame(protocol::encode_snapshot(fbb, 107, 2, {&own, 1}), 102 * ms);
+    CHECK_FALSE(core.ended());
+    CHECK(core.snapshots() == 1);
+    CHECK(core.last_ack() == 4);
+    CHECK(shared.metrics().stale_messages == 3);
+}

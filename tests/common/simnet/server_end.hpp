@@ -1,0 +1,58 @@
+#pragma once
+// The server's end of one simulated connection: what a transport does for the match, over a
+// simulated path instead of a socket. Bytes (or datagrams) in are framed, verified and handed
+// to the match; the match's frames go out on the downward path at once (a socket that always
+// has room: no snapshot is ever replaced while waiting). It sees every Input the match accepts
+// and every snapshot's ack, for the tests' checks.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "protocol/framing.hpp"
+#include "server/net/game.hpp"
+#include "simnet/path.hpp"
+
+namespace arena::simnet {
+
+class server_end : public net::participant {
+public:
+    server_end(net::game& game, path& down, const sim_time& now);
+
+    // From the upward path.
+    void on_data(std::span<const std::uint8_t> data);
+    // The client's end of the connection arrived.
+    void on_end();
+
+    void send(protocol::frame_bytes frame) override;
+    void send_snapshot(const protocol::snapshot_encoder& snapshot, std::uint32_t ack_sequence) override;
+    void send_snapshot_frame(std::span<const std::uint8_t> frame) override;
+    void reject(protocol::RejectCode code, std::string_view reason) override;
+    void say_bye(std::string_view reason) override;
+
+    [[nodiscard]] std::uint32_t player_id() const { return player_id_; }
+    [[nodiscard]] std::uint32_t body_id() const { return body_id_; }  // from the Welcome sent
+    [[nodiscard]] bool closed() const { return closed_; }
+    [[nodiscard]] const std::string& close_reason() const { return close_reason_; }
+
+    // Each Input the match took (sequence and values), and each snapshot's ack as it leaves.
+    std::function<void(const protocol::input_msg&)> on_input;
+    std::function<void(std::uint32_t ack_sequence)> on_snapshot_ack;
+
+private:
+    void on_frame(std::span<const std::uint8_t> frame);
+    void dispatch(const protocol::Message& message);
+    void close_after(const protocol::frame_bytes& last_word, std::string reason);
+
+    net::game& game_;
+    path& down_;
+    const sim_time& now_;
+    protocol::frame_reader reader_;
+    std::uint32_t player_id_ = 0;
+    std::uint32_t body_id_ = 0;
+    bool closed_ = false;
+    std::string close_reason_;
+};
+
+}  // namespace arena::simnet
