@@ -5,7 +5,6 @@
 #include <map>
 #include <vector>
 
-#include "server/net/log.hpp"
 #include "server/world/presets.hpp"
 #include "simnet/input_ledger.hpp"
 #include "simnet/match_sim.hpp"
@@ -16,8 +15,8 @@ using namespace arena;
 using namespace arena::simnet;
 using phase = bots::client_core::phase;
 
-net::game_config match_config(std::uint32_t players) {
-    net::game_config c;
+match::match_config match_config(std::uint32_t players) {
+    match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
     c.max_players = players;
@@ -51,9 +50,8 @@ struct checked_run {
     std::uint64_t acks_not_as_ruled = 0;      // a snapshot acknowledged another input than the last consumed
     std::uint64_t arrivals_out_of_order = 0;  // on a stream: an Input that is not the next one
 
-    checked_run(const net::game_config& config, const sim_options& options)
+    checked_run(const match::match_config& config, const sim_options& options)
         : sim(config, *world::preset_by_name("asteroids"), options) {
-        net::set_logging(false);
         ledgers.assign(sim.size(), input_ledger(config.input_buffer));
         const bool stream = options.kind == link_kind::stream;
         for (std::size_t i = 0; i < sim.size(); ++i) {
@@ -66,7 +64,7 @@ struct checked_run {
                 if (ack != ledgers[i].consumed_sequence()) ++acks_not_as_ruled;
             };
         }
-        sim.match().on_tick = [this](const replay::tick_record& record, std::uint64_t) {
+        sim.match().on_tick = [this](const match::tick_record& record, std::uint64_t) {
             for (std::size_t i = 0; i < sim.size(); ++i)
                 if (const std::uint32_t body = sim.server(i).body_id()) client_of_body[body] = i;
             for (const world::body_input& applied : record.inputs) {
@@ -105,7 +103,7 @@ void check_run(checked_run& run, link_kind kind, std::uint64_t ticks) {
     CHECK(run.inputs_not_as_ruled == 0);
     CHECK(run.acks_checked > sim.size() * ticks / 3 * 9 / 10);
     CHECK(run.acks_not_as_ruled == 0);
-    const net::game_counters counters = sim.match().counters();
+    const match::match_counters counters = sim.match().counters();
     std::uint64_t overflows = 0, underruns = 0, stale = 0;
     for (std::size_t i = 0; i < sim.size(); ++i) {
         const input_ledger& l = run.ledgers[i];
@@ -180,7 +178,6 @@ fingerprint short_run(link_kind kind, std::uint64_t seed) {
     o.up.duplicate = o.down.duplicate = 0.02;
     o.up.reorder = o.down.reorder = 0.02;
     o.seed = seed;
-    net::set_logging(false);
     match_sim sim(match_config(8), *world::preset_by_name("asteroids"), o);
     sim.run_ticks(600);
     fingerprint f;

@@ -26,7 +26,7 @@ struct match_sim::sim_client {
     protocol::frame_reader splitter;  // the core's output cut into frames, for datagrams
 };
 
-match_sim::match_sim(const net::game_config& config, const world::world_config& world, const sim_options& options)
+match_sim::match_sim(const match::match_config& config, const world::world_config& world, const sim_options& options)
     : game_(config, world), options_(options) {
     dice phases(link_seed(options.seed, ~0ULL));
     const sim_time period = 1'000'000'000ULL / config.tick_rate;
@@ -39,7 +39,7 @@ match_sim::match_sim(const net::game_config& config, const world::world_config& 
         p.delta_snapshots = options.delta_snapshots;
         p.unordered = options.kind == link_kind::datagram;
         auto c = std::make_unique<sim_client>(shared_, std::move(p), options.kind, options, i);
-        c->server = std::make_unique<server_end>(game_, c->down, now_);
+        c->server = std::make_unique<server_end>(game_, c->down, now_, "sim-" + std::to_string(i));
         c->launch_at = i * options.launch_spacing;
         c->phase = phases.upto(period - 1);
         c->next_tick = c->phase + period;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "client_sim/client_core.hpp"
-#include "server/net/game.hpp"
+#include "server/match/match.hpp"
 #include "simnet/path.hpp"
 #include "simnet/server_end.hpp"
 
@@ -32,7 +32,7 @@ struct sim_options {
 
 class match_sim {
 public:
-    match_sim(const net::game_config& config, const world::world_config& world, const sim_options& options);
+    match_sim(const arena::match::match_config& config, const world::world_config& world, const sim_options& options);
     match_sim(const match_sim&) = delete;
     match_sim& operator=(const match_sim&) = delete;
     ~match_sim();
@@ -43,7 +43,7 @@ public:
     // more virtual time passed; true when all closed.
     bool finish(sim_time limit = 30'000 * ms);
 
-    [[nodiscard]] net::game& match() { return game_; }
+    [[nodiscard]] arena::match::match& match() { return game_; }
     [[nodiscard]] sim_time now() const { return now_; }
     [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
     [[nodiscard]] std::size_t size() const { return clients_.size(); }
@@ -60,7 +60,7 @@ private:
     void refresh(sim_client& c);
     [[nodiscard]] sim_time server_tick_time(std::uint64_t tick) const;
 
-    net::game game_;
+    arena::match::match game_;
     sim_options options_;
     bots::client_shared shared_;
     std::vector<std::unique_ptr<sim_client>> clients_;

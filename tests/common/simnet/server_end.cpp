@@ -8,14 +8,15 @@ namespace arena::simnet {
 using protocol::Payload;
 using protocol::RejectCode;
 
-server_end::server_end(net::game& game, path& down, const sim_time& now) : game_(game), down_(down), now_(now) {}
+server_end::server_end(match::match& game, path& down, const sim_time& now, std::string peer)
+    : game_(game), down_(down), now_(now), peer_(std::move(peer)) {}
 
 void server_end::on_data(std::span<const std::uint8_t> data) {
     if (closed_) return;
     if (down_.kind() == link_kind::datagram) return on_frame(data);
     while (!data.empty() && !closed_) {
         data = data.subspan(reader_.feed(data));
-        if (reader_.failed()) return reject(RejectCode::bad_request, reader_.error());
+        if (reader_.failed()) return close(RejectCode::bad_request, reader_.error());
         if (!reader_.has_frame()) return;
         on_frame(reader_.frame());
         reader_.next();
@@ -27,11 +28,11 @@ void server_end::on_frame(std::span<const std::uint8_t> frame) {
     // frame 8-byte aligned.
     if (down_.kind() == link_kind::datagram) {
         if (reader_.feed(frame) != frame.size() || !reader_.has_frame())
-            return reject(RejectCode::bad_request, "a datagram that is not exactly one frame");
+            return close(RejectCode::bad_request, "a datagram that is not exactly one frame");
         frame = reader_.frame();
     }
     const auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
-    if (!verified) return reject(RejectCode::bad_request, "frame failed verification: " + verified.error);
+    if (!verified) return close(RejectCode::bad_request, "frame failed verification: " + verified.error);
     dispatch(*verified.value);
     if (down_.kind() == link_kind::datagram && !closed_) reader_.next();
 }
@@ -39,26 +40,26 @@ void server_end::on_frame(std::span<const std::uint8_t> frame) {
 void server_end::dispatch(const protocol::Message& message) {
     switch (message.payload_type()) {
         case Payload::Hello: {
-            if (player_id_ != 0) return reject(RejectCode::bad_request, "a second Hello");
+            if (player_id_ != 0) return close(RejectCode::bad_request, "a second Hello");
             const auto hello = protocol::decode_hello(message);
-            if (!hello) return reject(RejectCode::bad_request, hello.error);
+            if (!hello) return close(RejectCode::bad_request, hello.error);
             auto joined = game_.join(*this, hello.value, hello.value.token);
-            if (auto* no = std::get_if<net::rejection>(&joined)) return reject(no->code, no->reason);
+            if (auto* no = std::get_if<match::rejection>(&joined)) return close(no->code, no->reason);
             player_id_ = std::get<std::uint32_t>(joined);
             return;
         }
         case Payload::Input: {
-            if (player_id_ == 0) return reject(RejectCode::bad_request, "Input before Hello");
+            if (player_id_ == 0) return close(RejectCode::bad_request, "Input before Hello");
             const auto input = protocol::decode_input(message);
-            if (!input) return reject(RejectCode::bad_input, input.error);
-            if (auto no = game_.receive_input(player_id_, input.value)) return reject(no->code, no->reason);
+            if (!input) return close(RejectCode::bad_input, input.error);
+            if (auto no = game_.receive_input(player_id_, input.value)) return close(no->code, no->reason);
             if (on_input) on_input(input.value);
             return;
         }
         case Payload::Ping: {
-            if (player_id_ == 0) return reject(RejectCode::bad_request, "Ping before Hello");
+            if (player_id_ == 0) return close(RejectCode::bad_request, "Ping before Hello");
             const auto ping = protocol::decode_ping(message);
-            if (!ping) return reject(RejectCode::bad_request, ping.error);
+            if (!ping) return close(RejectCode::bad_request, ping.error);
             send(protocol::encode_pong(ping.value.client_time, game_.state().tick()));
             return;
         }
@@ -70,8 +71,8 @@ void server_end::dispatch(const protocol::Message& message) {
             return;
         }
         default:
-            reject(RejectCode::bad_request,
-                   "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
+            close(RejectCode::bad_request,
+                  "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
     }
 }
 
@@ -107,14 +108,14 @@ void server_end::send_snapshot_frame(std::span<const std::uint8_t> frame) {
     down_.send(frame, false, now_);
 }
 
-void server_end::reject(RejectCode code, std::string_view reason) {
+void server_end::close(RejectCode code, std::string_view reason) {
     if (closed_) return;
     const std::string text = std::string(protocol::EnumNameRejectCode(code)) + ": " + std::string(reason);
     if (player_id_ != 0) game_.leave(player_id_, *this, text);
     close_after(protocol::encode_reject(code, reason), text);
 }
 
-void server_end::say_bye(std::string_view reason) {
+void server_end::close_with_bye(std::string_view reason) {
     if (closed_) return;
     if (player_id_ != 0) game_.leave(player_id_, *this, reason);
     close_after(protocol::encode_bye(reason), std::string(reason));

@@ -11,14 +11,14 @@
 #include <string_view>
 
 #include "protocol/framing.hpp"
-#include "server/net/game.hpp"
+#include "server/match/match.hpp"
 #include "simnet/path.hpp"
 
 namespace arena::simnet {
 
-class server_end : public net::participant {
+class server_end : public match::connection {
 public:
-    server_end(net::game& game, path& down, const sim_time& now);
+    server_end(match::match& game, path& down, const sim_time& now, std::string peer);
 
     // From the upward path.
     void on_data(std::span<const std::uint8_t> data);
@@ -28,8 +28,9 @@ public:
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, std::uint32_t ack_sequence) override;
     void send_snapshot_frame(std::span<const std::uint8_t> frame) override;
-    void reject(protocol::RejectCode code, std::string_view reason) override;
-    void say_bye(std::string_view reason) override;
+    void close(protocol::RejectCode code, std::string_view reason) override;
+    void close_with_bye(std::string_view reason) override;
+    std::string_view peer() const override { return peer_; }
 
     [[nodiscard]] std::uint32_t player_id() const { return player_id_; }
     [[nodiscard]] std::uint32_t body_id() const { return body_id_; }  // from the Welcome sent
@@ -45,9 +46,10 @@ private:
     void dispatch(const protocol::Message& message);
     void close_after(const protocol::frame_bytes& last_word, std::string reason);
 
-    net::game& game_;
+    match::match& game_;
     path& down_;
     const sim_time& now_;
+    std::string peer_;
     protocol::frame_reader reader_;
     std::uint32_t player_id_ = 0;
     std::uint32_t body_id_ = 0;
