@@ -180,11 +180,13 @@ boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> st
 
 }  // namespace
 
-http_server::http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers)
+http_server::http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers,
+                         std::function<void(const std::string&)> log)
     : io_(io),
       options_(std::move(options)),
       handlers_(std::move(handlers)),
       acceptor_(io),
+      accept_backoff_("metrics", std::move(log)),
       state_(std::make_shared<shared_state>()) {}
 
 uint32_t http_server::open_connections() const {
@@ -221,7 +223,14 @@ boost::asio::awaitable<void> http_server::accept_loop() {
         boost::system::error_code ec;
         tcp::socket socket = co_await acceptor_.async_accept(use_ec(ec));
         if (!state->alive || ec == boost::asio::error::operation_aborted || !acceptor_.is_open()) co_return;
-        if (ec) continue;  // e.g. EMFILE: the next accept may succeed
+        if (ec) {
+            // Out of descriptors, the queued connection stays and accept fails again at once:
+            // pause rather than spin, and log at a bounded rate.
+            co_await accept_backoff_.pause_after(ec);
+            if (!state->alive || !acceptor_.is_open()) co_return;  // `this` may be gone
+            continue;
+        }
+        accept_backoff_.succeeded();
         // Full: the oldest connection still sending its head makes room; when every slot is
         // being answered, the new socket closes as it goes out of scope.
         if (state->open >= options_.max_connections && !state->evict_oldest()) continue;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "server/ops/accept_backoff.hpp"
 #include "server/ops/http_routes.hpp"
 
 namespace arena::ops {
@@ -26,7 +27,9 @@ struct http_server_options {
 
 class http_server {
 public:
-    http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers);
+    // log: where accept errors go (rate-limited); may be empty.
+    http_server(boost::asio::io_context& io, http_server_options options, http_handlers handlers,
+                std::function<void(const std::string&)> log = {});
     ~http_server();
 
     // Binds and listens (throws boost::system::system_error when it cannot), then accepts in the
@@ -39,6 +42,8 @@ public:
     // Connections counted, and connections closed to make room for newer ones, since start.
     uint32_t open_connections() const;
     uint64_t evicted_connections() const;
+    // Failed accepts since start (each paused the loop when it was for want of descriptors).
+    uint64_t accept_errors() const { return accept_backoff_.errors(); }
 
     // Shared with the connection coroutines, so that one still running after the server is
     // gone finds `alive` false instead of a dangling pointer. Defined in http_server.cpp.
@@ -52,6 +57,7 @@ private:
     http_handlers handlers_;
     boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
+    accept_backoff accept_backoff_;
     std::shared_ptr<shared_state> state_;
 };
 

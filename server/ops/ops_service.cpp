@@ -22,7 +22,7 @@ void ops_service::start_after_listening() {
         http_options.bind = metrics_address();
         http_options.port = *options_.metrics_port;
         http_ = std::make_unique<http_server>(io_, http_options,
-                                              http_handlers{[this] { return metrics_text(); }, healthy_});
+                                              http_handlers{[this] { return metrics_text(); }, healthy_}, log_);
         http_->start();
         if (log_) log_("metrics on http://" + metrics_address() + ":" + std::to_string(http_->port()) + "/metrics");
     }
