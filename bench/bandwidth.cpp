@@ -80,6 +80,12 @@ struct measuring_client : match::connection {
     uint64_t snapshots = 0, bytes = 0, payload = 0, bodies = 0, errors = 0;
 };
 
+// Hands one client message to the match as a transport does: verified, then received.
+bool deliver(match::match& g, match::connection& c, const protocol::frame_bytes& frame) {
+    auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
+    return verified && g.receive(c, *verified.value);
+}
+
 }  // namespace
 
 void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t ticks) {
@@ -91,12 +97,11 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
     config.seed = 7;
     match::match g(config, world::asteroids_preset());
     std::vector<std::unique_ptr<measuring_client>> clients;
-    std::vector<uint32_t> ids;
     for (uint32_t i = 0; i < players; ++i) {
         clients.push_back(std::make_unique<measuring_client>(delta));
         clients.back()->receiver.emplace(config.tick_rate);
-        const auto joined = g.join(*clients.back(), {protocol::protocol_version, "p", "", delta});
-        ids.push_back(std::get<uint32_t>(joined));
+        g.connect(*clients.back());
+        (void)deliver(g, *clients.back(), protocol::encode_hello(protocol::protocol_version, "p", "", delta));
     }
     // Every player moving: thrust and turn re-chosen every half second, thrust mostly forward.
     world::rng r(11);
@@ -115,7 +120,7 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
             }
             in.sequence = t + 1;
             in.snapshot_ack = delta ? c.ack_at(t) : 0;
-            (void)g.receive_input(ids[i], in);
+            (void)deliver(g, c, protocol::encode_input(in));
         }
         const auto t0 = clock::now();
         g.tick();

@@ -62,13 +62,13 @@ void frame_reader::on_prefix_complete() {
     const std::uint32_t length =
         std::uint32_t{p[0]} | (std::uint32_t{p[1]} << 8) | (std::uint32_t{p[2]} << 16) | (std::uint32_t{p[3]} << 24);
     if (length > max_body_) {
-        fail("frame length " + std::to_string(length) + " exceeds the limit of " + std::to_string(max_body_) +
-             " bytes");
+        fail(failure::too_large, "frame length " + std::to_string(length) + " exceeds the limit of " +
+                                     std::to_string(max_body_) + " bytes");
         return;
     }
     if (length < min_frame_body) {
-        fail("frame length " + std::to_string(length) + " is below the minimum of " + std::to_string(min_frame_body) +
-             " bytes");
+        fail(failure::too_small, "frame length " + std::to_string(length) + " is below the minimum of " +
+                                     std::to_string(min_frame_body) + " bytes");
         return;
     }
     body_size_ = length;
@@ -77,8 +77,9 @@ void frame_reader::on_prefix_complete() {
     state_ = state::need_body;
 }
 
-void frame_reader::fail(std::string reason) {
+void frame_reader::fail(failure kind, std::string reason) {
     state_ = state::failed;
+    failure_ = kind;
     error_ = std::move(reason);
 }
 

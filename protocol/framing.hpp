@@ -23,6 +23,12 @@ public:
         frame_ready,  // frame() holds a complete frame; call next() before reading more
         failed,       // the stream is unusable; error() says why. The connection should end.
     };
+    // Why a reader failed, for a caller that answers each kind differently.
+    enum class failure : std::uint8_t {
+        none,
+        too_large,  // the length prefix is above max_body: refused before a byte of the body
+        too_small,  // the length prefix is below the smallest valid message
+    };
 
     // max_body: the largest body accepted, in bytes (a server reading clients keeps the
     // default; a client reading the server passes max_server_frame_body).
@@ -47,6 +53,7 @@ public:
     [[nodiscard]] bool has_frame() const noexcept { return state_ == state::frame_ready; }
     [[nodiscard]] bool failed() const noexcept { return state_ == state::failed; }
     [[nodiscard]] std::string_view error() const noexcept { return error_; }
+    [[nodiscard]] failure failure_kind() const noexcept { return failure_; }
 
     // The complete frame, prefix included, as verify_message() wants it. It starts on an
     // 8-byte boundary (FlatBuffers reads 64-bit fields in place). Valid until next().
@@ -64,7 +71,7 @@ public:
 
 private:
     void on_prefix_complete();
-    void fail(std::string reason);
+    void fail(failure kind, std::string reason);
     [[nodiscard]] std::uint8_t* bytes() noexcept;
     [[nodiscard]] const std::uint8_t* bytes() const noexcept;
 
@@ -75,6 +82,7 @@ private:
     std::uint32_t body_size_ = 0;  // from the accepted prefix
     std::uint32_t max_body_;
     state state_ = state::need_prefix;
+    failure failure_ = failure::none;
     std::string error_;
 };
 

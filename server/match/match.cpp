@@ -1,7 +1,9 @@
 #include "server/match/match.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "protocol/config_hash.hpp"
-#include "protocol/version.hpp"
 #include "server/config/config_json.hpp"
 #include "server/match/logger.hpp"
 
@@ -9,9 +11,28 @@ namespace arena::match {
 
 using protocol::RejectCode;
 
-match::match(const match_config& config, const world::world_config& world_config, logger log)
+namespace {
+
+admission_limits limits_of(const match_config& c) {
+    admission_limits l;
+    l.tick_rate = c.tick_rate;
+    l.max_players = c.max_players;
+    l.max_connections = c.max_connections;
+    l.max_pending_handshakes = c.max_pending_handshakes;
+    l.handshake_timeout_ticks =
+        std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(c.handshake_timeout_s * c.tick_rate)));
+    l.max_name_bytes = c.max_name_bytes;
+    l.max_token_bytes = c.max_token_bytes;
+    l.max_inputs_per_second = c.max_inputs_per_second;
+    return l;
+}
+
+}  // namespace
+
+match::match(const match_config& config, const world::world_config& world_config, logger log, token_check check_token)
     : config_(config),
       log_(std::move(log)),
+      admission_(limits_of(config), std::move(check_token)),
       world_(world_config, config.seed),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
@@ -21,69 +42,170 @@ uint32_t match::snapshot_interval() const {
     return std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
 }
 
-uint32_t match::input_limit() const {
-    return config_.max_inputs_per_second ? config_.max_inputs_per_second : 2u * config_.tick_rate + 10u;
+uint32_t match::player_of(const connection& c) const {
+    auto it = clients_.find(&c);
+    return it == clients_.end() ? 0 : it->second.player_id;
 }
 
-std::variant<uint32_t, rejection> match::join(connection& who, const protocol::hello_msg& hello,
-                                              const std::string& identity) {
-    if (hello.protocol_version != protocol::protocol_version)
-        return rejection{RejectCode::version_mismatch, "protocol version " + std::to_string(hello.protocol_version) +
-                                                           " is not supported; this server speaks " +
-                                                           std::to_string(protocol::protocol_version)};
-    if (hello.name.size() > config_.max_name_bytes)
-        return rejection{RejectCode::bad_request,
-                         "name longer than " + std::to_string(config_.max_name_bytes) + " bytes"};
-    if (hello.token.size() > config_.max_token_bytes)
-        return rejection{RejectCode::bad_request,
-                         "token longer than " + std::to_string(config_.max_token_bytes) + " bytes"};
-    if (!identity.empty()) {
-        for (auto& [id, p] : players_) {
-            if (p.identity != identity) continue;
-            // The same player again: a reconnection, or a new connection taking over.
-            if (p.who) {
-                connection* old = p.who;
-                p.who = nullptr;  // detach first: the old connection's leave must not touch the player
-                old->close_with_bye("signed in from another connection");
-                ++counters_.takeovers;
-            } else {
-                ++counters_.reconnects;
-            }
-            p.who = &who;
-            p.inputs = input_buffer(config_.input_buffer);
-            p.last_received_sequence = 0;  // a new connection numbers its inputs from 1 again
-            p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
-            if (p.body_id != 0) pending_welcomes_.push_back(id);
-            log_("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
-            return id;
-        }
+bool match::connect(connection& c) {
+    client cl;
+    cl.serial = next_serial_++;
+    cl.standing.connected_tick = world_.tick();
+    auto [it, inserted] = clients_.emplace(&c, cl);
+    if (!inserted) return true;  // already known: a transport bug, but harmless
+    ++awaiting_hello_;
+    if (auto no = admission_.admit_connection(clients_.size(), awaiting_hello_)) {
+        reject(c, *no);
+        return false;
     }
-    if (players_.size() >= config_.max_players)
-        return rejection{RejectCode::server_full, "server full (" + std::to_string(config_.max_players) + " players)"};
-    const uint32_t id = next_player_id_++;
-    player p{&who, hello.name, identity,
-             0,    0,          input_buffer(config_.input_buffer),
-             0,    0,          snapshot_client(baseline_ring(), hello.delta_snapshots)};
-    players_.emplace(id, std::move(p));
-    pending_joins_.push_back(id);
-    return id;
+    return true;
 }
 
-void match::leave(uint32_t player_id, const connection& who, std::string_view reason, bool connection_lost) {
-    auto it = players_.find(player_id);
-    if (it == players_.end() || it->second.who != &who) return;
+bool match::receive(connection& c, const protocol::Message& message) {
+    auto it = clients_.find(&c);
+    if (it == clients_.end()) return false;  // bytes that were on their way when it was closed
+    client& cl = it->second;
+    admitted_message admitted = admission_.admit_message(cl.standing, message);
+    if (auto* no = std::get_if<rejection>(&admitted)) {
+        reject(c, *no);
+        return false;
+    }
+    if (auto* m = std::get_if<hello_message>(&admitted)) return on_hello(c, cl, m->hello);
+    if (auto* m = std::get_if<input_message>(&admitted)) return on_input(c, cl, m->input);
+    if (auto* m = std::get_if<ping_message>(&admitted)) {
+        c.send(protocol::encode_pong(m->client_time, world_.tick()));
+        return true;
+    }
+    forget(it, close_cause{close_cause::kind::client_bye, {}, std::get<bye_message>(admitted).reason});
+    return false;
+}
+
+bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello) {
+    auto who = admission_.admit_hello(hello, draining_);
+    if (auto* no = std::get_if<rejection>(&who)) {
+        reject(c, *no);
+        return false;
+    }
+    admitted_hello& admitted = std::get<admitted_hello>(who);
+    auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
+    const std::optional<bool> same_connected =
+        same == players_.end() ? std::nullopt : std::optional<bool>(same->second.who != nullptr);
+    auto verdict = admission_.admit_join(same_connected, players_.size());
+    if (auto* no = std::get_if<rejection>(&verdict)) {
+        reject(c, *no);
+        return false;
+    }
+    uint32_t id = 0;
+    if (std::get<join_kind>(verdict) == join_kind::new_player) {
+        id = next_player_id_++;
+        players_.emplace(id, player{&c, admitted.name, admitted.identity, 0, 0, input_buffer(config_.input_buffer),
+                                    snapshot_client(baseline_ring(), hello.delta_snapshots)});
+        pending_joins_.push_back(id);
+    } else {
+        // The same player again: a reconnection, or a new connection taking over.
+        id = same->first;
+        player& p = same->second;
+        connection* old = p.who;
+        p.who = &c;  // first: the old connection's leave must not touch the player
+        if (old) {
+            if (auto old_it = clients_.find(old); old_it != clients_.end())
+                forget(old_it, close_cause{close_cause::kind::taken_over, {}, {}});
+            old->close_with_bye("signed in from another connection");
+            ++counters_.takeovers;
+        } else {
+            ++counters_.reconnects;
+        }
+        p.inputs = input_buffer(config_.input_buffer);
+        p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
+        if (p.body_id != 0) pending_welcomes_.push_back(id);
+        log_("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
+    }
+    cl.player_id = id;
+    cl.standing.at = client_standing::stage::joined;  // a new connection numbers its inputs from 1 again
+    --awaiting_hello_;
+    const std::string_view peer = c.peer();
+    log_("hello player=%u name=%s from %.*s", id, hello.name.c_str(), static_cast<int>(peer.size()), peer.data());
+    return true;
+}
+
+bool match::on_input(connection& c, client& cl, const protocol::input_msg& input) {
+    auto it = players_.find(cl.player_id);
+    if (it == players_.end()) return true;
+    ++counters_.inputs_received;
+    auto admitted = admission_.admit_input(cl.standing, input);
+    if (auto* no = std::get_if<rejection>(&admitted)) {
+        reject(c, *no);
+        return false;
+    }
+    const admitted_input& in = std::get<admitted_input>(admitted);
+    if (in.stale) {
+        ++counters_.stale_inputs;
+        return true;
+    }
     player& p = it->second;
-    if (connection_lost && !p.identity.empty() && p.body_id != 0 && config_.reconnect_grace_s > 0) {
+    p.snapshots.acked_tick = input.snapshot_ack;
+    p.inputs.push({input.sequence, in.input});
+    return true;
+}
+
+match::player_map::iterator match::find_identity(const std::string& identity) {
+    for (auto it = players_.begin(); it != players_.end(); ++it)
+        if (it->second.identity == identity) return it;
+    return players_.end();
+}
+
+void match::reject(connection& c, const rejection& why) {
+    auto it = clients_.find(&c);
+    if (it == clients_.end()) return;  // already closed: one last word only
+    const char* code = protocol::EnumNameRejectCode(why.code);
+    const std::string_view peer = c.peer();
+    log_("reject %.*s code=%s reason=%s", static_cast<int>(peer.size()), peer.data(), code, why.detail.c_str());
+    ++counters_.rejects[why.code];
+    forget(it, close_cause::of(why));
+    c.close(why.code, why.detail);
+}
+
+void match::disconnect(connection& c, const close_cause& cause) {
+    if (auto it = clients_.find(&c); it != clients_.end()) forget(it, cause);
+}
+
+void match::shut_down(std::string_view reason) {
+    draining_ = true;
+    std::vector<std::pair<uint64_t, connection*>> all;
+    for (auto& [c, cl] : clients_) all.emplace_back(cl.serial, const_cast<connection*>(c));
+    std::sort(all.begin(), all.end());
+    for (auto& [serial, c] : all) {
+        forget(clients_.find(c), close_cause{close_cause::kind::shutdown, {}, std::string(reason)});
+        c->close_with_bye(reason);
+    }
+}
+
+void match::forget(client_map::iterator it, const close_cause& cause) {
+    ++counters_.closes[cause.key()];
+    const connection* c = it->first;
+    const uint32_t player_id = it->second.player_id;
+    if (it->second.standing.at == client_standing::stage::awaiting_hello) --awaiting_hello_;
+    clients_.erase(it);
+    if (player_id == 0) return;
+    auto p = players_.find(player_id);
+    if (p != players_.end() && p->second.who == c) leave(p, cause);
+}
+
+void match::leave(player_map::iterator it, const close_cause& cause) {
+    player& p = it->second;
+    const std::string reason = cause.text();
+    if (cause.connection_lost() && !draining_ && !p.identity.empty() && p.body_id != 0 &&
+        config_.reconnect_grace_s > 0) {
         p.who = nullptr;
         p.disconnected_at_tick = world_.tick();
-        log_("disconnect player=%u name=%s reason=%.*s (body kept for %.0f s)", player_id, p.name.c_str(),
-             static_cast<int>(reason.size()), reason.data(), config_.reconnect_grace_s);
+        log_("disconnect player=%u name=%s reason=%s (body kept for %.0f s)", it->first, p.name.c_str(), reason.c_str(),
+             config_.reconnect_grace_s);
         return;
     }
     remove_player(it, reason);
 }
 
-void match::remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason) {
+void match::remove_player(player_map::iterator it, std::string_view reason) {
     player& p = it->second;
     if (p.body_id != 0) {
         pending_leaves_.push_back(p.body_id);
@@ -109,25 +231,6 @@ void match::expire_disconnected() {
     }
 }
 
-std::optional<rejection> match::receive_input(uint32_t player_id, const protocol::input_msg& input) {
-    auto it = players_.find(player_id);
-    if (it == players_.end()) return std::nullopt;
-    player& p = it->second;
-    ++counters_.inputs_received;
-    if (++p.inputs_this_window > input_limit())
-        return rejection{RejectCode::rate_limit, "more than " + std::to_string(input_limit()) + " inputs per second"};
-    const world::player_input in{input.thrust, input.turn, input.buttons};
-    if (auto problem = world::check_input(in)) return rejection{RejectCode::bad_input, *problem};
-    if (input.sequence <= p.last_received_sequence) {
-        ++counters_.stale_inputs;
-        return std::nullopt;
-    }
-    p.last_received_sequence = input.sequence;
-    p.snapshots.acked_tick = input.snapshot_ack;
-    p.inputs.push({input.sequence, in});
-    return std::nullopt;
-}
-
 void match::tick() {
     expire_disconnected();
     tick_record record;
@@ -149,11 +252,22 @@ void match::tick() {
     }
     pending_welcomes_.clear();
 
-    // The input rate is counted per second of ticks.
-    if (world_.tick() % config_.tick_rate == 0) {
-        for (auto& [id, p] : players_) p.inputs_this_window = 0;
-    }
+    check_clients();
     send_snapshots();
+}
+
+void match::check_clients() {
+    struct refusal {
+        uint64_t serial;
+        connection* who;
+        rejection why;
+    };
+    std::vector<refusal> refused;
+    for (auto& [c, cl] : clients_)
+        if (auto no = admission_.check_on_tick(cl.standing, world_.tick()))
+            refused.push_back({cl.serial, const_cast<connection*>(c), std::move(*no)});
+    std::sort(refused.begin(), refused.end(), [](const refusal& a, const refusal& b) { return a.serial < b.serial; });
+    for (const refusal& r : refused) reject(*r.who, r.why);
 }
 
 void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
@@ -162,7 +276,7 @@ void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector
         if (it == players_.end()) continue;
         player& p = it->second;
         if (bodies[i] == 0) {
-            if (p.who) p.who->close(RejectCode::server_full, "the world has no room for another body");
+            if (p.who) reject(*p.who, {RejectCode::server_full, "the world has no room for another body"});
             continue;
         }
         p.body_id = bodies[i];

@@ -1,17 +1,25 @@
 #pragma once
 // The match: the world, its players and their input buffers, one tick at a time, and the
-// snapshot fan-out. It knows clients only as connections it was handed, logs through a logger
-// it was handed and never reads a clock: the server's tick loop calls tick() at the fixed rate.
+// snapshot fan-out. It knows clients only as connections a transport handed it, and what they
+// may send only through its admission rules (admission.hpp); it logs through a logger it was
+// handed and never reads a clock: the server's tick loop calls tick() at the fixed rate, and
+// every duration here is counted in ticks.
+//
+// A transport's whole contract: connect() each new connection, receive() each verified
+// message, reject() what it could not read or send, disconnect() a connection that ended by
+// itself, shut_down() at the end; and implement `connection` for the match to talk back.
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
-#include <variant>
+#include <unordered_map>
 #include <vector>
 
 #include "protocol/messages.hpp"
 #include "protocol/snapshot.hpp"
+#include "server/match/admission.hpp"
+#include "server/match/close_cause.hpp"
 #include "server/match/connection.hpp"
 #include "server/match/input_buffer.hpp"
 #include "server/match/logger.hpp"
@@ -25,20 +33,18 @@ struct match_config {
     uint16_t tick_rate = 60;      // ticks per second
     uint16_t snapshot_rate = 20;  // snapshots per second (a divisor of tick_rate works best)
     uint32_t max_players = 64;
-    uint32_t input_buffer = 8;           // inputs waiting per player; more drop the oldest
-    uint32_t max_inputs_per_second = 0;  // 0: 2 × tick_rate + 10
-    uint32_t max_name_bytes = 64;
-    uint32_t max_token_bytes = 1024;
-    std::string preset;  // name sent in Welcome ("" for a config file)
+    uint32_t input_buffer = 8;             // inputs waiting per player; more drop the oldest
+    uint32_t max_inputs_per_second = 0;    // 0: 2 × tick_rate + 10
+    uint32_t max_name_bytes = 64;          // Hello.name, bytes
+    uint32_t max_token_bytes = 1024;       // Hello.token, bytes
+    uint32_t max_connections = 0;          // open connections at once; 0: 2 × max_players + 16
+    uint32_t max_pending_handshakes = 64;  // connections that have not sent Hello yet
+    double handshake_timeout_s = 5;        // s a new connection has to send Hello (counted in ticks)
+    std::string preset;                    // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
     double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
     uint32_t delta_history = 32;    // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
-};
-
-struct rejection {
-    protocol::RejectCode code;
-    std::string reason;
 };
 
 struct match_counters {
@@ -53,27 +59,33 @@ struct match_counters {
     uint64_t reconnects = 0;
     uint64_t takeovers = 0;
     uint32_t players_peak = 0;
-    fanout_counters snapshots;  // frames by kind, and the delta frames' bytes and bodies
+    std::map<protocol::RejectCode, uint64_t> rejects;  // Rejects sent, by code
+    std::map<std::string, uint64_t> closes;            // connections ended, by close_cause::key()
+    fanout_counters snapshots;                         // frames by kind, and the delta frames' bytes and bodies
 };
 
 class match {
 public:
-    match(const match_config& config, const world::world_config& world_config, logger log = {});
+    // `check_token` verifies signed join tokens (unset: an open server, see admission.hpp).
+    match(const match_config& config, const world::world_config& world_config, logger log = {},
+          token_check check_token = {});
 
-    // A Hello: the player id, or why not. The body spawns and Welcome is sent at the next tick.
-    // `identity` (from a verified token, or the client's opaque token; empty: none) lets a
-    // player whose connection dropped come back to the same player and body within the grace
-    // period; a second connection with a connected identity takes the player over.
-    std::variant<uint32_t, rejection> join(connection& who, const protocol::hello_msg& hello,
-                                           const std::string& identity = {});
-    // `who` is gone. After a Bye or a refusal its body goes at the next tick; after a lost
-    // connection the body waits reconnect_grace_s for the same identity. A call from a
-    // connection that no longer holds the player (it was taken over) changes nothing.
-    void leave(uint32_t player_id, const connection& who, std::string_view reason, bool connection_lost = false);
-    // An Input from a joined player: buffered for the world, or why it ends the connection.
-    std::optional<rejection> receive_input(uint32_t player_id, const protocol::input_msg& input);
+    // A new connection. False: it was refused (its Reject is on its way) and is forgotten.
+    bool connect(connection& c);
+    // A verified message from `c`. False: the connection is over and should close once its
+    // output is flushed (a refusal was sent, or the client said Bye).
+    [[nodiscard]] bool receive(connection& c, const protocol::Message& message);
+    // Ends `c` with this Reject: bytes its transport could not frame or verify, output that
+    // does not drain.
+    void reject(connection& c, const rejection& why);
+    // `c` ended by itself (end of stream, a socket error): a joined player's body waits
+    // reconnect_grace_s for the same identity.
+    void disconnect(connection& c, const close_cause& cause);
+    // No new players from now on, and Bye(reason) to every connection.
+    void shut_down(std::string_view reason);
 
-    // One world step: joins, leaves, one input per player, the step, then the snapshot if due.
+    // One world step: joins, leaves, one input per player, the step, then the snapshot if due;
+    // then what time alone refuses (a Hello that never came).
     void tick();
 
     // Called after every step with what the tick changed and the world's hash (recording).
@@ -81,10 +93,15 @@ public:
 
     const world::world& state() const { return world_; }
     const match_config& config() const { return config_; }
+    const admission& rules() const { return admission_; }
     const std::string& world_config_json() const { return world_config_json_; }
     // Totals so far, live players' input buffers included.
     match_counters counters() const;
     size_t player_count() const { return players_.size(); }
+    size_t connection_count() const { return clients_.size(); }
+    // The player `c` plays (0: none yet, or not a connection of this match).
+    uint32_t player_of(const connection& c) const;
+    bool draining() const { return draining_; }
 
 private:
     struct player {
@@ -94,30 +111,46 @@ private:
         uint32_t disconnected_at_tick = 0;
         uint32_t body_id = 0;  // 0 until spawned
         input_buffer inputs;
-        uint32_t last_received_sequence = 0;
-        uint32_t inputs_this_window = 0;
         snapshot_client snapshots;  // delta baselines and the client's acknowledgement
     };
+    struct client {
+        uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
+        client_standing standing;
+        uint32_t player_id = 0;  // 0 until the Hello is accepted
+    };
+    using client_map = std::unordered_map<const connection*, client>;
+    using player_map = std::map<uint32_t, player>;  // by player id: a deterministic order
 
+    bool on_hello(connection& c, client& cl, const protocol::hello_msg& hello);
+    bool on_input(connection& c, client& cl, const protocol::input_msg& input);
+    player_map::iterator find_identity(const std::string& identity);
+    // Forgets `it`: counts why it closed, and its player leaves or waits for a reconnection.
+    void forget(client_map::iterator it, const close_cause& cause);
+    void leave(player_map::iterator it, const close_cause& cause);
     void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
     void send_welcome(uint32_t player_id, const player& p);
-    void remove_player(std::map<uint32_t, player>::iterator it, std::string_view reason);
+    void remove_player(player_map::iterator it, std::string_view reason);
     void expire_disconnected();
+    void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
-    uint32_t input_limit() const;
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
     match_config config_;
     logger log_;
+    admission admission_;
     world::world world_;
     std::string world_config_json_;
     uint64_t world_config_hash_;
-    std::map<uint32_t, player> players_;      // by player id: a deterministic order
+    client_map clients_;
+    uint64_t next_serial_ = 1;
+    size_t awaiting_hello_ = 0;  // clients that have not said Hello
+    player_map players_;
     std::vector<uint32_t> pending_joins_;     // player ids whose body spawns next tick
     std::vector<uint32_t> pending_leaves_;    // body ids to remove next tick
     std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
+    bool draining_ = false;
     snapshot_fanout fanout_;
     match_counters counters_;  // departed players' buffers folded in on leave
 };

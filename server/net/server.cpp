@@ -38,18 +38,36 @@ nlohmann::json process_figures() {
             {"peak_rss_kib", usage.ru_maxrss}};
 }
 
+// The match's configuration: its own, and the admission limits the server's flags set.
+match::match_config match_config_of(const server_options& o) {
+    match::match_config c = o.match;
+    c.max_connections = o.max_connections;
+    c.max_pending_handshakes = o.max_pending_handshakes;
+    c.handshake_timeout_s = static_cast<double>(o.handshake_timeout_ns) / 1e9;
+    return c;
+}
+
+// With --token-secret, a token must be signed with it and unexpired (the wall clock is read
+// here, outside the match).
+match::token_check token_check_of(const server_options& o) {
+    if (!o.token_secret) return {};
+    return [secret = *o.token_secret](std::string_view token) {
+        auto claims = secret.verify(std::string(token), auth::unix_now());
+        if (auto* e = std::get_if<auth::token_error>(&claims)) return match::token_verdict{std::nullopt, e->reason};
+        return match::token_verdict{std::get<auth::token_claims>(claims).name, {}};
+    };
+}
+
 }  // namespace
 
 server::server(boost::asio::io_context& io, const server_options& options, const world::world_config& world_config)
     : io_(io),
       options_(options),
-      match_(options.match, world_config, server_logger()),
+      match_(match_config_of(options), world_config, server_logger(), token_check_of(options)),
       acceptor_(io),
       clock_(1'000'000'000LL / options.match.tick_rate, options.max_catch_up),
       tick_timer_(io),
-      stop_timer_(io) {
-    if (options_.max_connections == 0) options_.max_connections = 2 * options_.match.max_players + 16;
-}
+      stop_timer_(io) {}
 
 int64_t server::now_ns() const {
     return steady_now_ns();
@@ -86,15 +104,11 @@ boost::asio::awaitable<void> server::accept_loop() {
             log_line("accept failed: %s", ec.message().c_str());
             continue;
         }
-        auto s = std::make_shared<session>(std::move(socket), *this, next_session_id_++);
+        auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
         sessions_.emplace(s->id(), s);
         connections_peak_ = std::max<uint64_t>(connections_peak_, sessions_.size());
         s->start();
-        // Limits are checked after start() so that the refused client reads why.
-        if (sessions_.size() > options_.max_connections)
-            s->close(protocol::RejectCode::server_full, "too many connections");
-        else if (pending_handshakes() > options_.max_pending_handshakes)
-            s->close(protocol::RejectCode::server_full, "too many connections waiting to say Hello");
+        match_.connect(*s);  // after start(), so that a refused client reads why
     }
 }
 
@@ -131,7 +145,8 @@ void server::check_stalled_sessions(int64_t now) {
     std::vector<std::shared_ptr<session>> stalled;
     for (auto& [id, s] : sessions_)
         if (!s->closing() && s->stalled_ns(now) > options_.stall_timeout_ns) stalled.push_back(s);
-    for (auto& s : stalled) s->close(protocol::RejectCode::slow_consumer, "no progress writing to the client");
+    for (auto& s : stalled)
+        match_.reject(*s, {protocol::RejectCode::slow_consumer, "no progress writing to the client"});
 }
 
 void server::log_stats(int64_t now) {
@@ -162,7 +177,7 @@ ops::server_metrics server::metrics_snapshot() const {
     m.leaves = c.leaves;
     // Every code from 0, so that rate() sees the first reject of a kind.
     for (const char* const* n = protocol::EnumNamesRejectCode(); *n; ++n) m.rejects[*n] = 0;
-    for (const auto& [name, count] : rejects_) m.rejects[name] = count;
+    for (const auto& [code, count] : c.rejects) m.rejects[protocol::EnumNameRejectCode(code)] = count;
     m.bytes_in = run_traffic_.bytes_in;
     m.bytes_out = run_traffic_.bytes_out;
     m.messages_in = run_traffic_.messages_in;
@@ -174,41 +189,6 @@ ops::server_metrics server::metrics_snapshot() const {
     m.input_overflows = c.input_overflows;
     m.draining = stopping_;
     return m;
-}
-
-size_t server::pending_handshakes() const {
-    size_t pending = 0;
-    for (const auto& [id, s] : sessions_)
-        if (s->player_id() == 0 && !s->closing()) ++pending;
-    return pending;
-}
-
-std::variant<uint32_t, match::rejection> server::on_hello(session& s, const protocol::hello_msg& hello) {
-    if (stopping_) return match::rejection{protocol::RejectCode::shutting_down, "the server is shutting down"};
-    std::string identity = hello.token;  // an open server: the token is the client's own key
-    protocol::hello_msg named = hello;
-    if (options_.token_secret) {
-        auto claims = options_.token_secret->verify(hello.token, auth::unix_now());
-        if (auto* e = std::get_if<auth::token_error>(&claims))
-            return match::rejection{protocol::RejectCode::unauthorized, e->reason};
-        // The signed name is the player's identity, whatever name the Hello claims.
-        named.name = std::get<auth::token_claims>(claims).name;
-        identity = "signed:" + named.name;
-    }
-    auto joined = match_.join(s, named, identity);
-    if (std::holds_alternative<uint32_t>(joined))
-        log_line("hello player=%u name=%s from %.*s", std::get<uint32_t>(joined), hello.name.c_str(),
-                 static_cast<int>(s.peer().size()), s.peer().data());
-    return joined;
-}
-
-std::optional<match::rejection> server::on_input(session& s, const protocol::input_msg& input) {
-    return match_.receive_input(s.player_id(), input);
-}
-
-void server::on_closed(session& s, std::string_view reason, bool connection_lost) {
-    if (s.player_id() != 0) match_.leave(s.player_id(), s, reason, connection_lost && !stopping_);
-    ++drops_[std::string(reason.substr(0, reason.find(':')))];
 }
 
 void server::on_gone(session& s) {
@@ -227,12 +207,6 @@ void server::count_out(size_t bytes) {
     ++run_traffic_.messages_out;
 }
 
-void server::count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason) {
-    const char* name = protocol::EnumNameRejectCode(code);
-    ++rejects_[name];
-    log_line("reject %s code=%s reason=%.*s", peer.c_str(), name, static_cast<int>(reason.size()), reason.data());
-}
-
 void server::shutdown(const std::string& reason) {
     if (stopping_) return;
     stopping_ = true;
@@ -241,10 +215,7 @@ void server::shutdown(const std::string& reason) {
     acceptor_.close(ec);
     tick_timer_.cancel();
     stop_timer_.cancel();
-    // Copy: saying bye may close a session and erase it from the map.
-    std::vector<std::shared_ptr<session>> all;
-    for (auto& [id, s] : sessions_) all.push_back(s);
-    for (auto& s : all) s->close_with_bye(reason);
+    match_.shut_down(reason);  // Bye to every connection
     if (sessions_.empty()) {
         finish();
         return;
@@ -267,6 +238,8 @@ void server::finish() {
 void server::write_stats_json(const std::string& path) const {
     const double seconds = static_cast<double>(now_ns() - started_ns_) / 1e9;
     const match::match_counters c = match_.counters();
+    std::map<std::string, uint64_t> rejects;
+    for (const auto& [code, count] : c.rejects) rejects[protocol::EnumNameRejectCode(code)] = count;
     nlohmann::json j = {
         {"duration_s", seconds},
         {"ticks", match_.state().tick()},
@@ -281,8 +254,8 @@ void server::write_stats_json(const std::string& path) const {
         {"players_peak", c.players_peak},
         {"joins", c.joins},
         {"leaves", c.leaves},
-        {"rejects", rejects_},
-        {"closes", drops_},
+        {"rejects", rejects},
+        {"closes", c.closes},
         {"inputs_received", c.inputs_received},
         {"input_underruns", c.input_underruns},
         {"input_overflows", c.input_overflows},
@@ -306,7 +279,7 @@ void server::write_stats_json(const std::string& path) const {
         {"messages_out", run_traffic_.messages_out},
         {"limits",
          {{"max_players", options_.match.max_players},
-          {"max_connections", options_.max_connections},
+          {"max_connections", match_.rules().connection_limit()},
           {"max_pending_handshakes", options_.max_pending_handshakes},
           {"max_inputs_per_second", options_.match.max_inputs_per_second ? options_.match.max_inputs_per_second
                                                                          : 2u * options_.match.tick_rate + 10u},

@@ -60,13 +60,7 @@ public:
     // Called once, after the last tick, before the io_context stops (recording, stats).
     std::function<void()> on_shutdown;
 
-    // From sessions.
-    std::variant<uint32_t, match::rejection> on_hello(session& s, const protocol::hello_msg& hello);
-    std::optional<match::rejection> on_input(session& s, const protocol::input_msg& input);
-    // The session began to close: its player leaves the match now, or, when the connection was
-    // lost, waits for a reconnection.
-    void on_closed(session& s, std::string_view reason, bool connection_lost = false);
-    // The session's socket is closed: it is forgotten.
+    // From sessions. The session's socket is closed: it is forgotten.
     void on_gone(session& s);
     void count_in(size_t bytes);
     void count_message_in() { ++run_traffic_.messages_in; }
@@ -75,7 +69,6 @@ public:
     // True while the tick loop ran a tick within `window_ns`: /healthz and the Agones pings.
     bool ticking(int64_t window_ns = 1'000'000'000) const { return now_ns() - last_tick_ns_ < window_ns; }
     void count_out(size_t bytes);
-    void count_reject(protocol::RejectCode code, const std::string& peer, std::string_view reason);
     uint32_t current_tick() const { return match_.state().tick(); }
     const server_options& options() const { return options_; }
     int64_t now_ns() const;
@@ -92,7 +85,6 @@ private:
     void check_stalled_sessions(int64_t now);
     void log_stats(int64_t now);
     void finish();
-    size_t pending_handshakes() const;
 
     boost::asio::io_context& io_;
     server_options options_;
@@ -112,8 +104,6 @@ private:
     traffic run_traffic_, window_traffic_;
     int64_t window_start_ns_ = 0;
     int64_t last_watchdog_ns_ = 0;
-    std::map<std::string, uint64_t> rejects_;  // by reason code name
-    std::map<std::string, uint64_t> drops_;    // closes by reason, for the stats
     uint64_t connections_peak_ = 0;
     ops::histogram tick_seconds_;
     int64_t last_tick_ns_ = 0;

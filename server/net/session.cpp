@@ -1,6 +1,5 @@
 #include "server/net/session.hpp"
 
-#include "protocol/decode.hpp"
 #include "protocol/verify.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
@@ -8,7 +7,6 @@
 namespace arena::net {
 
 using boost::asio::use_awaitable;
-using protocol::Payload;
 using protocol::RejectCode;
 
 namespace {
@@ -22,13 +20,13 @@ std::string describe(const boost::asio::ip::tcp::socket& socket) {
 
 }  // namespace
 
-session::session(boost::asio::ip::tcp::socket socket, server& owner, uint64_t id)
+session::session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id)
     : socket_(std::move(socket)),
       owner_(owner),
+      match_(match),
       id_(id),
       peer_(describe(socket_)),
       wake_(socket_.get_executor()),
-      handshake_(socket_.get_executor()),
       linger_(socket_.get_executor()) {}
 
 void session::start() {
@@ -40,11 +38,6 @@ void session::start() {
     // Each coroutine's completion handler holds the session alive until the coroutine ends.
     boost::asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
     boost::asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
-    handshake_.expires_after(std::chrono::nanoseconds(owner_.options().handshake_timeout_ns));
-    handshake_.async_wait([self](const boost::system::error_code& e) {
-        if (!e && self->player_id_ == 0 && !self->closing_)
-            self->close(RejectCode::timeout, "no Hello within the handshake timeout");
-    });
 }
 
 boost::asio::awaitable<void> session::reader() {
@@ -64,94 +57,33 @@ boost::asio::awaitable<void> session::reader() {
             while (!closing_) {
                 data = data.subspan(reader_.feed(data));
                 if (reader_.failed()) {
-                    const bool too_large = reader_.error().find("exceeds") != std::string_view::npos;
-                    close(too_large ? RejectCode::too_large : RejectCode::bad_request, reader_.error());
+                    match_.reject(*this, match::admission::unreadable(reader_));
                     co_return;
                 }
                 if (!reader_.has_frame()) break;  // the rest of the frame is still on its way
                 auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
                 if (!verified) {
-                    close(RejectCode::bad_request, "frame failed verification: " + verified.error);
+                    match_.reject(*this, match::admission::unverified(verified.error));
                     co_return;
                 }
                 owner_.count_message_in();
-                const bool go_on = dispatch(*verified.value);
+                const bool go_on = match_.receive(*this, *verified.value);
                 reader_.next();
-                if (!go_on) co_return;
+                if (!go_on) {
+                    close_after({});  // a Bye from the client; after a refusal this changes nothing
+                    co_return;
+                }
             }
         }
     } catch (const boost::system::system_error& e) {
         if (!closing_) {
+            using kind = match::close_cause::kind;
             const bool eof = e.code() == boost::asio::error::eof;
-            const bool mid_frame = reader_.buffered() > 0;
-            const std::string why = eof ? (mid_frame ? "connection closed mid-frame" : "connection closed")
-                                        : "socket error: " + e.code().message();
-            owner_.on_closed(*this, why, true);
+            const kind what =
+                !eof ? kind::socket_error : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
+            match_.disconnect(*this, {what, {}, eof ? std::string() : e.code().message()});
             close_now();
         }
-    }
-}
-
-bool session::dispatch(const protocol::Message& message) {
-    switch (message.payload_type()) {
-        case Payload::Hello: {
-            if (player_id_ != 0) {
-                close(RejectCode::bad_request, "a second Hello");
-                return false;
-            }
-            auto hello = protocol::decode_hello(message);
-            if (!hello) {
-                close(RejectCode::bad_request, hello.error);
-                return false;
-            }
-            auto joined = owner_.on_hello(*this, hello.value);
-            if (auto* no = std::get_if<match::rejection>(&joined)) {
-                close(no->code, no->reason);
-                return false;
-            }
-            player_id_ = std::get<uint32_t>(joined);
-            handshake_.cancel();
-            return true;
-        }
-        case Payload::Input: {
-            if (player_id_ == 0) {
-                close(RejectCode::bad_request, "Input before Hello");
-                return false;
-            }
-            auto input = protocol::decode_input(message);
-            if (!input) {
-                close(RejectCode::bad_input, input.error);
-                return false;
-            }
-            if (auto no = owner_.on_input(*this, input.value)) {
-                close(no->code, no->reason);
-                return false;
-            }
-            return true;
-        }
-        case Payload::Ping: {
-            if (player_id_ == 0) {
-                close(RejectCode::bad_request, "Ping before Hello");
-                return false;
-            }
-            auto ping = protocol::decode_ping(message);
-            if (!ping) {
-                close(RejectCode::bad_request, ping.error);
-                return false;
-            }
-            send(protocol::encode_pong(ping.value.client_time, owner_.current_tick()));
-            return true;
-        }
-        case Payload::Bye: {
-            auto bye = protocol::decode_bye(message);
-            owner_.on_closed(*this, "client said bye: " + (bye ? bye.value.reason : std::string("(unreadable)")));
-            close_after({});
-            return false;
-        }
-        default:
-            close(RejectCode::bad_request,
-                  "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
-            return false;
     }
 }
 
@@ -184,7 +116,7 @@ boost::asio::awaitable<void> session::writer() {
             waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.now_ns();
         }
     } catch (const boost::system::system_error& e) {
-        if (!closing_) owner_.on_closed(*this, "write failed: " + e.code().message(), true);
+        if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, e.code().message()});
         close_now();
     }
 }
@@ -192,7 +124,10 @@ boost::asio::awaitable<void> session::writer() {
 void session::send(protocol::frame_bytes frame) {
     if (closing_) return;
     if (control_.size() >= owner_.options().max_control_frames) {
-        close(RejectCode::slow_consumer, "too many messages waiting to be sent");
+        // Not from inside the match's call that sent this: the refusal goes through the match.
+        boost::asio::post(socket_.get_executor(), [self = shared_from_this()] {
+            self->match_.reject(*self, {RejectCode::slow_consumer, "too many messages waiting to be sent"});
+        });
         return;
     }
     control_.push_back(std::move(frame));
@@ -219,22 +154,16 @@ void session::snapshot_queued() {
 }
 
 void session::close(RejectCode code, std::string_view reason) {
-    if (closing_) return;
-    owner_.count_reject(code, peer_, reason);
-    owner_.on_closed(*this, std::string(protocol::EnumNameRejectCode(code)) + ": " + std::string(reason));
     close_after(protocol::encode_reject(code, reason));
 }
 
 void session::close_with_bye(std::string_view reason) {
-    if (closing_) return;
-    owner_.on_closed(*this, reason);
     close_after(protocol::encode_bye(reason));
 }
 
 void session::close_after(protocol::frame_bytes last_frame) {
     if (closing_) return;
     closing_ = true;
-    handshake_.cancel();
     // Whatever was waiting is dropped: only the last word goes out, then the socket closes.
     control_.clear();
     snapshot_pending_ = false;
@@ -255,7 +184,6 @@ void session::close_now() {
     socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ec);
     socket_.close(ec);
     wake_.cancel();
-    handshake_.cancel();
     linger_.cancel();
     owner_.on_gone(*this);
 }

@@ -12,6 +12,7 @@
 
 #include "protocol/framing.hpp"
 #include "server/match/connection.hpp"
+#include "server/match/match.hpp"
 
 namespace arena::net {
 
@@ -19,7 +20,7 @@ class server;
 
 class session : public match::connection, public std::enable_shared_from_this<session> {
 public:
-    session(boost::asio::ip::tcp::socket socket, server& owner, uint64_t id);
+    session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id);
 
     void start();
     void send(protocol::frame_bytes frame) override;
@@ -33,23 +34,20 @@ public:
     // Nanoseconds that output has waited without a byte written (0 when nothing waits).
     int64_t stalled_ns(int64_t now_ns) const;
     uint64_t id() const { return id_; }
-    uint32_t player_id() const { return player_id_; }
     bool closing() const { return closing_; }
 
 private:
     boost::asio::awaitable<void> reader();
     boost::asio::awaitable<void> writer();
-    // Handles one verified frame; false ends the connection.
-    bool dispatch(const protocol::Message& message);
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
     void snapshot_queued();  // snapshot_next_ holds a new snapshot: wake the writer
 
     boost::asio::ip::tcp::socket socket_;
     server& owner_;
+    match::match& match_;
     uint64_t id_;
     std::string peer_;
-    uint32_t player_id_ = 0;  // 0 until the Hello is accepted
     protocol::frame_reader reader_;
     std::array<uint8_t, 1024> input_{};          // bytes read from the socket, fed to reader_
     std::deque<protocol::frame_bytes> control_;  // in order, bounded
@@ -58,10 +56,9 @@ private:
     bool snapshot_pending_ = false;
     bool closing_ = false;
     bool closed_ = false;
-    int64_t waiting_since_ns_ = 0;         // when output began to wait unwritten; 0 = nothing waits
-    boost::asio::steady_timer wake_;       // wakes the writer
-    boost::asio::steady_timer handshake_;  // Hello deadline
-    boost::asio::steady_timer linger_;     // bounds how long a closing session may flush
+    int64_t waiting_since_ns_ = 0;      // when output began to wait unwritten; 0 = nothing waits
+    boost::asio::steady_timer wake_;    // wakes the writer
+    boost::asio::steady_timer linger_;  // bounds how long a closing session may flush
 };
 
 }  // namespace arena::net

@@ -1,6 +1,6 @@
 // Fuzz target: bytes from a client, through everything the server does with them before the
-// world: framing (in uneven chunks), verification, decoding, and the match's handling of Hello
-// and Input (a fake connection stands in for the socket).
+// world: framing (in uneven chunks), verification, then the match's admission and handling of
+// every message (a fake connection stands in for the socket).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -35,28 +35,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const world::world_config config = small_world();
     match::match game({}, config);
     null_connection client;
-    uint32_t player = 0;
+    game.connect(client);
+    bool open = true;
     protocol::frame_reader reader;
     // The first byte picks the chunk size, so that prefixes and bodies get split anywhere.
     const size_t chunk = size ? 1 + data[0] % 17 : 1;
     size_t at = size ? 1 : 0;
-    while (at < size && !reader.failed()) {
+    while (at < size && open) {
         const size_t n = std::min(chunk, size - at);
         at += reader.feed(std::span<const uint8_t>(data + at, n));
+        if (reader.failed()) {
+            game.reject(client, match::admission::unreadable(reader));
+            break;
+        }
         if (!reader.has_frame()) continue;
         auto message = protocol::verify_message(reader.frame(), protocol::client_frame_limits);
         if (message) {
             const protocol::Message& m = *message.value;
-            if (auto hello = protocol::decode_hello(m); hello && player == 0) {
-                auto joined = game.join(client, hello.value, hello.value.token);
-                if (auto* id = std::get_if<uint32_t>(&joined)) player = *id;
-            } else if (auto input = protocol::decode_input(m); input && player != 0) {
-                if (!game.receive_input(player, input.value)) game.tick();
-            }
-            (void)protocol::decode_ping(m);
-            (void)protocol::decode_bye(m);
+            // Admission and the match, as a transport drives them; a tick after each message.
+            open = game.receive(client, m);
+            game.tick();
             (void)protocol::decode_snapshot(m);
             (void)protocol::decode_welcome(m);
+        } else {
+            game.reject(client, match::admission::unverified(message.error));
+            open = false;
         }
         reader.next();
     }

@@ -2,12 +2,14 @@
 #include <catch2/catch.hpp>
 #include <limits>
 
+#include "match/drive.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
 #include "server/world/presets.hpp"
 
 using namespace arena;
+using namespace arena::match_test;
 
 namespace {
 
@@ -53,8 +55,8 @@ protocol::hello_msg hello(uint16_t version = protocol::protocol_version) {
 TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[match]") {
     match::match g(make_config(2), world::asteroids_preset());
     fake_client c;
-    auto joined = g.join(c, hello());
-    REQUIRE(std::holds_alternative<uint32_t>(joined));
+    const uint32_t joined = join(g, c, hello());
+    REQUIRE(joined != 0);
     CHECK(c.frames.empty());
     g.tick();
     REQUIRE(c.frames.size() == 1);
@@ -62,7 +64,7 @@ TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[
     REQUIRE(m);
     auto welcome = protocol::decode_welcome(*m.value);
     REQUIRE(welcome);
-    CHECK(welcome.value.player_id == std::get<uint32_t>(joined));
+    CHECK(welcome.value.player_id == joined);
     const world::body* b = g.state().find(welcome.value.entity_id);
     REQUIRE(b);
     CHECK(b->owner == welcome.value.player_id);
@@ -72,22 +74,22 @@ TEST_CASE("a joined player gets a Welcome with its body after the next tick", "[
 TEST_CASE("version mismatch and a full server are refused with their codes", "[match]") {
     match::match g(make_config(1), world::asteroids_preset());
     fake_client a, b, c;
-    auto wrong = g.join(a, hello(99));
-    REQUIRE(std::holds_alternative<match::rejection>(wrong));
-    CHECK(std::get<match::rejection>(wrong).code == protocol::RejectCode::version_mismatch);
-    REQUIRE(std::holds_alternative<uint32_t>(g.join(b, hello())));
-    auto full = g.join(c, hello());
-    REQUIRE(std::holds_alternative<match::rejection>(full));
-    CHECK(std::get<match::rejection>(full).code == protocol::RejectCode::server_full);
+    REQUIRE(join(g, a, hello(99)) == 0);
+    REQUIRE(a.rejected);
+    CHECK(*a.rejected == protocol::RejectCode::version_mismatch);
+    REQUIRE(join(g, b, hello()) != 0);
+    REQUIRE(join(g, c, hello()) == 0);
+    REQUIRE(c.rejected);
+    CHECK(*c.rejected == protocol::RejectCode::server_full);
 }
 
 TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last consumed sequence", "[match]") {
     match::match g(make_config(), world::asteroids_preset());
     fake_client c;
-    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    REQUIRE(join(g, c, hello()) != 0);
     g.tick();  // spawns
     for (uint32_t s = 1; s <= 12; ++s) {
-        REQUIRE_FALSE(g.receive_input(id, {s, 1, 0, 0}));
+        REQUIRE(send_input(g, c, {s, 1, 0, 0}));
         g.tick();
     }
     REQUIRE(c.snapshot_ticks.size() == 4);  // ticks 3, 6, 9, 12 of 13
@@ -99,24 +101,28 @@ TEST_CASE("snapshots go out every tick_rate/snapshot_rate ticks with the last co
 TEST_CASE("a NaN input and an input flood are refused", "[match]") {
     match::match g(make_config(64, 10), world::asteroids_preset());
     fake_client c;
-    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    REQUIRE(join(g, c, hello()) != 0);
     g.tick();
-    auto nan = g.receive_input(id, {1, std::numeric_limits<float>::quiet_NaN(), 0, 0});
-    REQUIRE(nan);
-    CHECK(nan->code == protocol::RejectCode::bad_input);
-    std::optional<match::rejection> flood;
-    for (uint32_t s = 1; s <= 20 && !flood; ++s) flood = g.receive_input(id, {s, 0, 0, 0});
+    REQUIRE_FALSE(send_input(g, c, {1, std::numeric_limits<float>::quiet_NaN(), 0, 0}));
+    REQUIRE(c.rejected);
+    CHECK(*c.rejected == protocol::RejectCode::bad_input);
+    fake_client d;
+    REQUIRE(join(g, d, hello()) != 0);
+    g.tick();
+    bool flood = false;
+    for (uint32_t s = 1; s <= 20 && !flood; ++s) flood = !send_input(g, d, {s, 0, 0, 0});
     REQUIRE(flood);
-    CHECK(flood->code == protocol::RejectCode::rate_limit);
+    REQUIRE(d.rejected);
+    CHECK(*d.rejected == protocol::RejectCode::rate_limit);
 }
 
 TEST_CASE("a player who leaves loses its body at the next tick", "[match]") {
     match::match g({}, world::asteroids_preset());
     fake_client c;
-    const uint32_t id = std::get<uint32_t>(g.join(c, hello()));
+    REQUIRE(join(g, c, hello()) != 0);
     g.tick();
     const size_t with_player = g.state().bodies().size();
-    g.leave(id, c, "test");
+    say_bye(g, c, "test");
     g.tick();
     CHECK(g.state().bodies().size() == with_player - 1);
     CHECK(g.player_count() == 0);
@@ -127,15 +133,16 @@ TEST_CASE("a dropped player comes back to the same body within the grace period"
     config.reconnect_grace_s = 1;  // 60 ticks
     match::match g(config, world::asteroids_preset());
     fake_client first, second;
-    const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-1"));
+    const uint32_t id = join(g, first, hello(), "key-1");
+    REQUIRE(id != 0);
     g.tick();
     const size_t bodies = g.state().bodies().size();
-    g.leave(id, first, "connection closed", true);
+    drop(g, first);
     for (int k = 0; k < 30; ++k) g.tick();
     CHECK(g.state().bodies().size() == bodies);  // the body waits
-    auto back = g.join(second, hello(), "key-1");
-    REQUIRE(std::holds_alternative<uint32_t>(back));
-    CHECK(std::get<uint32_t>(back) == id);
+    const uint32_t back = join(g, second, hello(), "key-1");
+    REQUIRE(back != 0);
+    CHECK(back == id);
     g.tick();
     REQUIRE(second.frames.size() == 1);
     auto welcome =
@@ -151,28 +158,30 @@ TEST_CASE("after the grace period a dropped player's body is removed", "[match][
     config.reconnect_grace_s = 0.5;  // 30 ticks
     match::match g(config, world::asteroids_preset());
     fake_client c, later;
-    const uint32_t id = std::get<uint32_t>(g.join(c, hello(), "key-2"));
+    const uint32_t id = join(g, c, hello(), "key-2");
+    REQUIRE(id != 0);
     g.tick();
     const size_t bodies = g.state().bodies().size();
-    g.leave(id, c, "connection closed", true);
+    drop(g, c);
     for (int k = 0; k < 32; ++k) g.tick();
     CHECK(g.state().bodies().size() == bodies - 1);
     CHECK(g.player_count() == 0);
     // Coming back now is a new player.
-    auto again = g.join(later, hello(), "key-2");
-    REQUIRE(std::holds_alternative<uint32_t>(again));
-    CHECK(std::get<uint32_t>(again) != id);
+    const uint32_t again = join(g, later, hello(), "key-2");
+    REQUIRE(again != 0);
+    CHECK(again != id);
 }
 
 TEST_CASE("a second connection with the same identity takes the player over", "[match][reconnect]") {
     match::match g(make_config(), world::asteroids_preset());
     fake_client first, second;
-    const uint32_t id = std::get<uint32_t>(g.join(first, hello(), "key-3"));
+    const uint32_t id = join(g, first, hello(), "key-3");
+    REQUIRE(id != 0);
     g.tick();
-    REQUIRE(std::get<uint32_t>(g.join(second, hello(), "key-3")) == id);
+    REQUIRE(join(g, second, hello(), "key-3") == id);
     CHECK(first.bye.find("another connection") != std::string::npos);
     // The old connection's leave no longer touches the player.
-    g.leave(id, first, "closed", false);
+    drop(g, first);
     CHECK(g.player_count() == 1);
     CHECK(g.counters().takeovers == 1);
 }
@@ -180,10 +189,10 @@ TEST_CASE("a second connection with the same identity takes the player over", "[
 TEST_CASE("a player without an identity or who says bye leaves at once", "[match][reconnect]") {
     match::match g(make_config(), world::asteroids_preset());
     fake_client anonymous, named;
-    const uint32_t a = std::get<uint32_t>(g.join(anonymous, hello()));
-    const uint32_t b = std::get<uint32_t>(g.join(named, hello(), "key-4"));
+    REQUIRE(join(g, anonymous, hello()) != 0);
+    REQUIRE(join(g, named, hello(), "key-4") != 0);
     g.tick();
-    g.leave(a, anonymous, "connection closed", true);
-    g.leave(b, named, "client said bye", false);
+    drop(g, anonymous);
+    say_bye(g, named, "client said bye");
     CHECK(g.player_count() == 0);
 }

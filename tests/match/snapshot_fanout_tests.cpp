@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "match/drive.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/quantize.hpp"
 #include "protocol/delta/receiver.hpp"
@@ -185,15 +186,16 @@ struct delta_session {
     explicit delta_session(const match::match_config& config, match::connection* earlier = nullptr,
                            uint32_t ticks_before_join = 0)
         : g(config, world::asteroids_preset()) {
-        if (earlier != nullptr) REQUIRE(std::holds_alternative<uint32_t>(g.join(*earlier, hello(true))));
+        if (earlier != nullptr) REQUIRE(match_test::join(g, *earlier, hello(true)) != 0);
         for (uint32_t k = 0; k < ticks_before_join; ++k) g.tick();
-        player = std::get<uint32_t>(g.join(link, hello(true)));
+        player = match_test::join(g, link, hello(true));
+        REQUIRE(player != 0);
     }
 
     // Sends an Input carrying `ack` (nothing when nullopt: the client is silent), ticks up to
     // this client's next snapshot and returns it, decoded and checked against the world.
     decoded_snapshot next_snapshot(std::optional<uint32_t> ack) {
-        if (ack) REQUIRE_FALSE(g.receive_input(player, {++sequence, 1.0f, 0.25f, 0, *ack}));
+        if (ack) REQUIRE(match_test::send_input(g, link, {++sequence, 1.0f, 0.25f, 0, *ack}));
         for (uint32_t k = 0; k <= snapshot_interval && link.snapshots.empty(); ++k) {
             g.tick();
             if (after_tick) after_tick();
@@ -279,9 +281,8 @@ void connect(slot& s, match::match& g, world::rng& rng, const std::string& ident
     sim_client& c = s.client.emplace();
     c.identity = identity;
     c.delta = s.delta;
-    auto joined = g.join(*c.link, hello(s.delta), identity);
-    REQUIRE(std::holds_alternative<uint32_t>(joined));
-    c.player = std::get<uint32_t>(joined);
+    c.player = match_test::join(g, *c.link, hello(s.delta), identity);
+    REQUIRE(c.player != 0);
     c.loss_per_256 = below(rng, 64);
     if (s.kept_rx) c.rx = *s.kept_rx;
     s.kept_rx.reset();
@@ -294,10 +295,10 @@ void churn(std::vector<slot>& slots, match::match& g, world::rng& rng, uint32_t&
         if (s.client && s.client->body != 0) {
             sim_client& c = *s.client;
             if (one_in(rng, 900)) {
-                g.leave(c.player, *c.link, "quit");
+                match_test::say_bye(g, *c.link, "quit");
                 s.client.reset();
             } else if (one_in(rng, 900)) {
-                g.leave(c.player, *c.link, "connection lost", true);
+                match_test::drop(g, *c.link);
                 s.waiting = c.identity;
                 s.reconnect_at = now + 10 + below(rng, 80);
                 if (one_in(rng, 2)) s.kept_rx = c.rx;
@@ -380,7 +381,7 @@ void send_input(sim_client& c, match::match& g, world::rng& rng) {
     in.turn = rng.uniform(-1, 1);
     in.buttons = one_in(rng, 20) ? protocol::button_impulse : 0;
     in.snapshot_ack = now < c.frozen_until ? c.frozen_ack : c.acks[c.acks.size() - 1 - lag];
-    REQUIRE_FALSE(g.receive_input(c.player, in));
+    REQUIRE(match_test::send_input(g, *c.link, in));
     c.acked = in.snapshot_ack;
 }
 
@@ -402,8 +403,7 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
         }
         for (slot& s : slots) {
             if (!s.client) continue;
-            if (s.client->link->closed) {  // no room for its body: the session would leave
-                g.leave(s.client->player, *s.client->link, "refused");
+            if (s.client->link->closed) {  // no room for its body: the match refused it
                 s.client.reset();
             } else if (s.client->body != 0) {
                 send_input(*s.client, g, rng);
@@ -498,7 +498,7 @@ TEST_CASE("with view radius 0 every client's view is the whole world", "[match][
     const size_t everything = world::asteroids_preset().rocks.count + 2;  // the rocks and both ships
     delta_session s(delta_config(0));
     recording_client plain;  // without delta_snapshots: the shared BodyState frame
-    REQUIRE(std::holds_alternative<uint32_t>(s.g.join(plain, hello(false))));
+    REQUIRE(match_test::join(s.g, plain, hello(false)) != 0);
     uint64_t plain_frames = 0;
     s.after_tick = [&] {
         for (const protocol::frame_bytes& frame : std::exchange(plain.snapshots, {})) {

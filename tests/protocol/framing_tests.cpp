@@ -39,6 +39,7 @@ TEST_CASE("A length above 64 KiB is refused right after the prefix, nothing of t
     CHECK(reader.next_buffer().empty());
     CHECK(reader.frame().empty());
     CHECK(reader.error() == "frame length 65537 exceeds the limit of 65536 bytes");
+    CHECK(reader.failure_kind() == ap::frame_reader::failure::too_large);
     // A failed stream stays failed: the connection must end.
     CHECK(reader.feed(bytes) == 0);
     reader.next();
@@ -57,6 +58,7 @@ TEST_CASE("A length of exactly the limit is accepted", "[protocol]") {
     const auto bytes = prefix_then_body(1024, 1024);
     CHECK(reader.feed(bytes) == bytes.size());
     REQUIRE(reader.has_frame());
+    CHECK(reader.failure_kind() == ap::frame_reader::failure::none);
     CHECK(reader.body().size() == 1024);
     CHECK(reader.frame().size() == 1028);
 }
@@ -73,6 +75,9 @@ TEST_CASE("A zero length is refused", "[protocol]") {
     const auto out = read_stream(prefix_then_body(0, 8), 1);
     CHECK(out.consumed == 4);
     CHECK(out.error == "frame length 0 is below the minimum of 8 bytes");
+    ap::frame_reader reader;
+    reader.feed(prefix_then_body(0, 8));
+    CHECK(reader.failure_kind() == ap::frame_reader::failure::too_small);
 }
 
 TEST_CASE("A length too small to hold a FlatBuffer is refused", "[protocol]") {

@@ -1,0 +1,115 @@
+#include "server/match/admission.hpp"
+
+#include "protocol/version.hpp"
+
+namespace arena::match {
+
+using protocol::Payload;
+using protocol::RejectCode;
+
+admission::admission(const admission_limits& limits, token_check check_token)
+    : limits_(limits), check_token_(std::move(check_token)) {}
+
+uint32_t admission::input_limit() const {
+    return limits_.max_inputs_per_second ? limits_.max_inputs_per_second : 2u * limits_.tick_rate + 10u;
+}
+
+uint32_t admission::connection_limit() const {
+    return limits_.max_connections ? limits_.max_connections : 2 * limits_.max_players + 16;
+}
+
+std::optional<rejection> admission::admit_connection(size_t open, size_t awaiting_hello) const {
+    if (open > connection_limit()) return rejection{RejectCode::server_full, "too many connections"};
+    if (awaiting_hello > limits_.max_pending_handshakes)
+        return rejection{RejectCode::server_full, "too many connections waiting to say Hello"};
+    return std::nullopt;
+}
+
+rejection admission::unreadable(const protocol::frame_reader& reader) {
+    const bool too_large = reader.failure_kind() == protocol::frame_reader::failure::too_large;
+    return {too_large ? RejectCode::too_large : RejectCode::bad_request, std::string(reader.error())};
+}
+
+rejection admission::unverified(std::string_view error) {
+    return {RejectCode::bad_request, "frame failed verification: " + std::string(error)};
+}
+
+admitted_message admission::admit_message(const client_standing& client, const protocol::Message& message) const {
+    const bool joined = client.at == client_standing::stage::joined;
+    switch (message.payload_type()) {
+        case Payload::Hello: {
+            if (joined) return rejection{RejectCode::bad_request, "a second Hello"};
+            auto hello = protocol::decode_hello(message);
+            if (!hello) return rejection{RejectCode::bad_request, hello.error};
+            return hello_message{std::move(hello.value)};
+        }
+        case Payload::Input: {
+            if (!joined) return rejection{RejectCode::bad_request, "Input before Hello"};
+            auto input = protocol::decode_input(message);
+            if (!input) return rejection{RejectCode::bad_input, input.error};
+            return input_message{input.value};
+        }
+        case Payload::Ping: {
+            if (!joined) return rejection{RejectCode::bad_request, "Ping before Hello"};
+            auto ping = protocol::decode_ping(message);
+            if (!ping) return rejection{RejectCode::bad_request, ping.error};
+            return ping_message{ping.value.client_time};
+        }
+        case Payload::Bye: {
+            auto bye = protocol::decode_bye(message);
+            return bye_message{bye ? bye.value.reason : std::string("(unreadable)")};
+        }
+        default:
+            return rejection{
+                RejectCode::bad_request,
+                "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client"};
+    }
+}
+
+std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::hello_msg& hello, bool draining) const {
+    if (draining) return rejection{RejectCode::shutting_down, "the server is shutting down"};
+    if (hello.protocol_version != protocol::protocol_version)
+        return rejection{RejectCode::version_mismatch, "protocol version " + std::to_string(hello.protocol_version) +
+                                                           " is not supported; this server speaks " +
+                                                           std::to_string(protocol::protocol_version)};
+    if (hello.name.size() > limits_.max_name_bytes)
+        return rejection{RejectCode::bad_request,
+                         "name longer than " + std::to_string(limits_.max_name_bytes) + " bytes"};
+    if (hello.token.size() > limits_.max_token_bytes)
+        return rejection{RejectCode::bad_request,
+                         "token longer than " + std::to_string(limits_.max_token_bytes) + " bytes"};
+    if (!check_token_) return admitted_hello{hello.name, hello.token};  // open: the token is the client's own key
+    token_verdict verdict = check_token_(hello.token);
+    if (!verdict.name) return rejection{RejectCode::unauthorized, std::move(verdict.problem)};
+    // The signed name is the player's identity, whatever name the Hello claims.
+    return admitted_hello{*verdict.name, "signed:" + *verdict.name};
+}
+
+std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> same_identity_connected,
+                                                         size_t players) const {
+    if (same_identity_connected) return *same_identity_connected ? join_kind::takeover : join_kind::reconnect;
+    if (players >= limits_.max_players)
+        return rejection{RejectCode::server_full, "server full (" + std::to_string(limits_.max_players) + " players)"};
+    return join_kind::new_player;
+}
+
+std::variant<admitted_input, rejection> admission::admit_input(client_standing& client,
+                                                               const protocol::input_msg& input) const {
+    if (++client.inputs_this_second > input_limit())
+        return rejection{RejectCode::rate_limit, "more than " + std::to_string(input_limit()) + " inputs per second"};
+    const world::player_input in{input.thrust, input.turn, input.buttons};
+    if (auto problem = world::check_input(in)) return rejection{RejectCode::bad_input, *problem};
+    if (input.sequence <= client.last_sequence) return admitted_input{true, {}};
+    client.last_sequence = input.sequence;
+    return admitted_input{false, in};
+}
+
+std::optional<rejection> admission::check_on_tick(client_standing& client, uint32_t tick) const {
+    if (tick % limits_.tick_rate == 0) client.inputs_this_second = 0;  // the rate is counted per second of ticks
+    if (client.at == client_standing::stage::awaiting_hello &&
+        tick - client.connected_tick >= limits_.handshake_timeout_ticks)
+        return rejection{RejectCode::timeout, "no Hello within the handshake timeout"};
+    return std::nullopt;
+}
+
+}  // namespace arena::match

@@ -1,0 +1,128 @@
+#pragma once
+// Every rule about what a client may send, and when, in one place: how many connections and
+// handshakes at once, message order, the Hello (version, name and token limits, the token's
+// identity), reconnection and takeover, capacity, and inputs (order, rate, finite numbers).
+// Each rule is checked once, here, at the boundary, and a refusal is a typed `rejection` (the
+// RejectCode the client reads, and a detail). The match acts on the verdicts; transports only
+// frame and verify bytes (protocol/) and hand the messages over.
+//
+// Where a new rule goes: a limit on connections in admit_connection(), on a message kind in
+// admit_message(), on the Hello in admit_hello(), on who may take which player in
+// admit_join(), on inputs in admit_input(), on a client's behaviour over time in
+// check_on_tick(). What a rule must remember about one client lives in client_standing.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "protocol/decode.hpp"
+#include "protocol/framing.hpp"
+#include "server/match/close_cause.hpp"
+#include "server/world/input.hpp"
+
+namespace arena::match {
+
+struct admission_limits {
+    uint16_t tick_rate = 60;                 // ticks per second: rates are counted per second of ticks
+    uint32_t max_players = 64;               // players at once
+    uint32_t max_connections = 0;            // open connections at once; 0: 2 × max_players + 16
+    uint32_t max_pending_handshakes = 64;    // connections that have not sent Hello yet
+    uint32_t handshake_timeout_ticks = 300;  // ticks a new connection has to send Hello (5 s at 60 Hz)
+    uint32_t max_name_bytes = 64;            // Hello.name, bytes
+    uint32_t max_token_bytes = 1024;         // Hello.token, bytes
+    uint32_t max_inputs_per_second = 0;      // 0: 2 × tick_rate + 10
+};
+
+// What a signed token says: the name it was minted for, or why it is refused. Checking a
+// signature needs a secret and the wall clock, so the caller hands a checker in; without one
+// the server is open and a token is the client's own opaque key.
+struct token_verdict {
+    std::optional<std::string> name;  // set: a good token for this player name
+    std::string problem;              // otherwise: why not ("token expired")
+};
+using token_check = std::function<token_verdict(std::string_view token)>;
+
+// Where one client stands with admission; the match keeps one per connection.
+struct client_standing {
+    enum class stage : uint8_t { awaiting_hello, joined };
+    stage at = stage::awaiting_hello;
+    uint32_t connected_tick = 0;      // the world's tick when the connection was handed over
+    uint32_t last_sequence = 0;       // newest Input.sequence taken; older ones are stale
+    uint32_t inputs_this_second = 0;  // inputs in the current second of ticks
+};
+
+// A message that passed the order and decoding rules, as its typed content.
+struct hello_message {
+    protocol::hello_msg hello;
+};
+struct input_message {
+    protocol::input_msg input;
+};
+struct ping_message {
+    uint64_t client_time = 0;
+};
+struct bye_message {
+    std::string reason;  // "(unreadable)" when the Bye did not decode: the client leaves anyway
+};
+using admitted_message = std::variant<rejection, hello_message, input_message, ping_message, bye_message>;
+
+// A Hello that passed: who the player is.
+struct admitted_hello {
+    std::string name;      // the signed name with a token secret, else the Hello's name
+    std::string identity;  // the key a reconnection is matched by; empty: none (cannot reconnect)
+};
+
+// How a Hello joins, given the player already holding its identity, if any.
+enum class join_kind : uint8_t {
+    new_player,  // a new player id and body
+    reconnect,   // the same player, whose connection dropped within the grace period
+    takeover,    // the same player, still connected elsewhere: the old connection gets Bye
+};
+
+// An Input that passed: the world's input, or nothing to do (a stale sequence).
+struct admitted_input {
+    bool stale = false;  // sequence not above the last taken: ignored, not refused
+    world::player_input input{};
+};
+
+class admission {
+public:
+    explicit admission(const admission_limits& limits, token_check check_token = {});
+
+    // A new connection, when `open` are open (this one included) and `awaiting_hello` of
+    // them (this one included) have not said Hello.
+    [[nodiscard]] std::optional<rejection> admit_connection(size_t open, size_t awaiting_hello) const;
+    // Bytes a transport could not frame, or a frame that failed verification.
+    [[nodiscard]] static rejection unreadable(const protocol::frame_reader& reader);
+    [[nodiscard]] static rejection unverified(std::string_view error);
+
+    // A verified message from a client: in order for its stage, and decoded.
+    [[nodiscard]] admitted_message admit_message(const client_standing& client, const protocol::Message& message) const;
+    // The Hello's own rules: the server is not draining, the version, the name and token
+    // limits, and the token's identity.
+    [[nodiscard]] std::variant<admitted_hello, rejection> admit_hello(const protocol::hello_msg& hello,
+                                                                      bool draining) const;
+    // Whether the player may join: `same_identity_connected` is unset when no player holds the
+    // identity, else whether that player is still connected.
+    [[nodiscard]] std::variant<join_kind, rejection> admit_join(std::optional<bool> same_identity_connected,
+                                                                size_t players) const;
+    // An Input from a joined client: the rate, finite numbers, and the sequence order.
+    // Updates `client` (the rate count, the last sequence) when it passes.
+    [[nodiscard]] std::variant<admitted_input, rejection> admit_input(client_standing& client,
+                                                                      const protocol::input_msg& input) const;
+    // Once per tick, after the step, for each client: what time alone refuses (a Hello that
+    // never came). Also starts each second's rate count.
+    [[nodiscard]] std::optional<rejection> check_on_tick(client_standing& client, uint32_t tick) const;
+
+    [[nodiscard]] uint32_t input_limit() const;
+    [[nodiscard]] uint32_t connection_limit() const;
+    [[nodiscard]] const admission_limits& limits() const { return limits_; }
+
+private:
+    admission_limits limits_;
+    token_check check_token_;
+};
+
+}  // namespace arena::match

@@ -1,0 +1,46 @@
+#pragma once
+// Drives a match as a transport does: each message is encoded, verified and handed to
+// match::receive(), so that the tests go through admission exactly as bytes from a socket do.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "protocol/messages.hpp"
+#include "protocol/verify.hpp"
+#include "server/match/match.hpp"
+
+namespace arena::match_test {
+
+// Hands one encoded client message to the match; false: the match ended the connection.
+inline bool deliver(match::match& m, match::connection& c, const protocol::frame_bytes& frame) {
+    auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
+    REQUIRE(verified);
+    return m.receive(c, *verified.value);
+}
+
+// Connects `c` (when it is new) and sends its Hello; `identity` goes in the token, which an
+// open server takes as the client's key. The player id, or 0 when refused.
+inline uint32_t join(match::match& m, match::connection& c, const protocol::hello_msg& hello,
+                     const std::string& identity = {}) {
+    if (m.player_of(c) == 0 && !m.connect(c)) return 0;
+    const std::string token = identity.empty() ? hello.token : identity;
+    if (!deliver(m, c, protocol::encode_hello(hello.protocol_version, hello.name, token, hello.delta_snapshots)))
+        return 0;
+    return m.player_of(c);
+}
+
+// Sends one Input; false: refused (the connection is over).
+inline bool send_input(match::match& m, match::connection& c, const protocol::input_msg& input) {
+    return deliver(m, c, protocol::encode_input(input));
+}
+
+// The client says Bye and leaves at once.
+inline void say_bye(match::match& m, match::connection& c, const std::string& reason = "done") {
+    CHECK_FALSE(deliver(m, c, protocol::encode_bye(reason)));
+}
+
+// The connection drops without a word.
+inline void drop(match::match& m, match::connection& c) {
+    m.disconnect(c, {match::close_cause::kind::connection_closed, {}, {}});
+}
+
+}  // namespace arena::match_test
