@@ -125,6 +125,7 @@ void match_sim::step(sim_time horizon) {
             now_, [&](std::span<const std::uint8_t> data) { s.on_data(data); }, [&] { s.on_end(); });
         if (!c->launched && c->launch_at <= now_) {
             c->launched = true;
+            c->server->open();
             core.launch(now_);
             core.connected();
             flush(*c);

@@ -11,12 +11,16 @@ using protocol::RejectCode;
 server_end::server_end(match::match& game, path& down, const sim_time& now, std::string peer)
     : game_(game), down_(down), now_(now), peer_(std::move(peer)) {}
 
+void server_end::open() {
+    game_.connect(*this);
+}
+
 void server_end::on_data(std::span<const std::uint8_t> data) {
     if (closed_) return;
     if (down_.kind() == link_kind::datagram) return on_frame(data);
     while (!data.empty() && !closed_) {
         data = data.subspan(reader_.feed(data));
-        if (reader_.failed()) return close(RejectCode::bad_request, reader_.error());
+        if (reader_.failed()) return game_.reject(*this, match::admission::unreadable(reader_));
         if (!reader_.has_frame()) return;
         on_frame(reader_.frame());
         reader_.next();
@@ -28,57 +32,26 @@ void server_end::on_frame(std::span<const std::uint8_t> frame) {
     // frame 8-byte aligned.
     if (down_.kind() == link_kind::datagram) {
         if (reader_.feed(frame) != frame.size() || !reader_.has_frame())
-            return close(RejectCode::bad_request, "a datagram that is not exactly one frame");
+            return game_.reject(*this, {RejectCode::bad_request, "a datagram that is not exactly one frame"});
         frame = reader_.frame();
     }
     const auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
-    if (!verified) return close(RejectCode::bad_request, "frame failed verification: " + verified.error);
-    dispatch(*verified.value);
-    if (down_.kind() == link_kind::datagram && !closed_) reader_.next();
-}
-
-void server_end::dispatch(const protocol::Message& message) {
-    switch (message.payload_type()) {
-        case Payload::Hello: {
-            if (player_id_ != 0) return close(RejectCode::bad_request, "a second Hello");
-            const auto hello = protocol::decode_hello(message);
-            if (!hello) return close(RejectCode::bad_request, hello.error);
-            auto joined = game_.join(*this, hello.value, hello.value.token);
-            if (auto* no = std::get_if<match::rejection>(&joined)) return close(no->code, no->reason);
-            player_id_ = std::get<std::uint32_t>(joined);
-            return;
-        }
-        case Payload::Input: {
-            if (player_id_ == 0) return close(RejectCode::bad_request, "Input before Hello");
-            const auto input = protocol::decode_input(message);
-            if (!input) return close(RejectCode::bad_input, input.error);
-            if (auto no = game_.receive_input(player_id_, input.value)) return close(no->code, no->reason);
-            if (on_input) on_input(input.value);
-            return;
-        }
-        case Payload::Ping: {
-            if (player_id_ == 0) return close(RejectCode::bad_request, "Ping before Hello");
-            const auto ping = protocol::decode_ping(message);
-            if (!ping) return close(RejectCode::bad_request, ping.error);
-            send(protocol::encode_pong(ping.value.client_time, game_.state().tick()));
-            return;
-        }
-        case Payload::Bye: {
-            const auto bye = protocol::decode_bye(message);
-            const std::string reason = "client said bye: " + (bye ? bye.value.reason : std::string("(unreadable)"));
-            if (player_id_ != 0) game_.leave(player_id_, *this, reason);
-            close_after({}, reason);
-            return;
-        }
-        default:
-            close(RejectCode::bad_request,
-                  "unexpected " + std::string(protocol::payload_name(message.payload_type())) + " from a client");
+    if (!verified) return game_.reject(*this, match::admission::unverified(verified.error));
+    const protocol::Message& message = *verified.value;
+    if (game_.receive(*this, message)) {
+        // The match took it (a stale one included): the tests' ledger sees what it was given.
+        if (message.payload_type() == Payload::Input && on_input) on_input(protocol::decode_input(message).value);
+    } else if (!closed_) {
+        // The client said Bye: the match let it go, and the connection closes without a word.
+        const auto bye = protocol::decode_bye(message);
+        close_after({}, "client said bye: " + (bye ? bye.value.reason : std::string("(unreadable)")));
     }
+    if (down_.kind() == link_kind::datagram && !closed_) reader_.next();
 }
 
 void server_end::on_end() {
     if (closed_) return;
-    if (player_id_ != 0) game_.leave(player_id_, *this, "connection closed", true);
+    game_.disconnect(*this, {match::close_cause::kind::connection_closed, {}, {}});
     close_after({}, "connection closed");
 }
 
@@ -110,14 +83,13 @@ void server_end::send_snapshot_frame(std::span<const std::uint8_t> frame) {
 
 void server_end::close(RejectCode code, std::string_view reason) {
     if (closed_) return;
+    // The match already counted this and let the player go.
     const std::string text = std::string(protocol::EnumNameRejectCode(code)) + ": " + std::string(reason);
-    if (player_id_ != 0) game_.leave(player_id_, *this, text);
     close_after(protocol::encode_reject(code, reason), text);
 }
 
 void server_end::close_with_bye(std::string_view reason) {
     if (closed_) return;
-    if (player_id_ != 0) game_.leave(player_id_, *this, reason);
     close_after(protocol::encode_bye(reason), std::string(reason));
 }
 

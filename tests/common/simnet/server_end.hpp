@@ -20,6 +20,8 @@ class server_end : public match::connection {
 public:
     server_end(match::match& game, path& down, const sim_time& now, std::string peer);
 
+    // The client connected: the match is handed this connection (it may refuse it).
+    void open();
     // From the upward path.
     void on_data(std::span<const std::uint8_t> data);
     // The client's end of the connection arrived.
@@ -32,7 +34,7 @@ public:
     void close_with_bye(std::string_view reason) override;
     std::string_view peer() const override { return peer_; }
 
-    [[nodiscard]] std::uint32_t player_id() const { return player_id_; }
+    [[nodiscard]] std::uint32_t player_id() const { return game_.player_of(*this); }
     [[nodiscard]] std::uint32_t body_id() const { return body_id_; }  // from the Welcome sent
     [[nodiscard]] bool closed() const { return closed_; }
     [[nodiscard]] const std::string& close_reason() const { return close_reason_; }
@@ -43,7 +45,6 @@ public:
 
 private:
     void on_frame(std::span<const std::uint8_t> frame);
-    void dispatch(const protocol::Message& message);
     void close_after(const protocol::frame_bytes& last_word, std::string reason);
 
     match::match& game_;
@@ -51,7 +52,6 @@ private:
     const sim_time& now_;
     std::string peer_;
     protocol::frame_reader reader_;
-    std::uint32_t player_id_ = 0;
     std::uint32_t body_id_ = 0;
     bool closed_ = false;
     std::string close_reason_;
