@@ -148,50 +148,21 @@ TEST_CASE("bots join, get snapshots at the snapshot rate and predict their own b
     CHECK(j.at("bytes_per_body").get<double>() > 32.0);
 }
 
-TEST_CASE("bots decode delta snapshots of their view and acknowledge them", "[e2e][delta]") {
-    temp_dir dir;
-    server s(dir, {"--view-radius", "120"});
-    const bots_run r =
-        run_bots(dir, s.port,
-                 {"--bots", "40", "--duration", "6", "--behavior", "mixed", "--seed", "3", "--connect-rate", "100"});
-    INFO(r.output);
-    REQUIRE(r.exit_code == 0);
-    const json& j = r.report;
-    CHECK(j.at("joined") == 40);
-    CHECK(j.at("failed") == 0);
-    check_snapshot_rate(j);
-    // Every snapshot a delta, every one decoded: the checksum in each proves the bot holds
-    // exactly the server's quantised view.
-    CHECK(j.at("totals").at("delta_snapshots") == j.at("totals").at("snapshots"));
-    CHECK(j.at("totals").at("delta_errors") == 0);
-    // The view: the own body always, and fewer than all 80 bodies in a 400 m world seen 120 m
-    // around (π·120² is 28 % of its area).
-    CHECK(figure(j, "bodies_in_view", "min") >= 1);
-    CHECK(figure(j, "bodies_in_view", "mean") < 40);
-    // Issue 7's target: at most 4 bytes per body in view, the codec's bytes (each frame adds
-    // about 50 bytes of FlatBuffers and length prefix, which bench/README.md counts too).
-    CHECK(j.at("delta_payload_bytes_per_body").get<double>() <= 4.0);
-    CHECK(j.at("bytes_per_body").get<double>() < 32.0);
-    // Prediction from quantised state (positions within 2 mm, velocities within 16 mm/s):
-    // no longer bit-exact, but the median error stays at the millimetre scale and the tail
-    // is the full-snapshot test's.
-    CHECK(figure(j, "prediction_error_m", "p50") < 0.01);
-    CHECK(figure(j, "prediction_error_m", "p99") < 0.5);
-    CHECK(figure(j, "prediction_error_m", "max") < 5.0);
-}
+// Delta snapshots of a view, decoded and acknowledged, with their byte and prediction figures,
+// and NaN inputs (refused with bad_input; over sockets in tests/net/server_tests.cpp) are
+// tested without sockets in tests/simnet/match_play_tests.cpp, in virtual time. Over sockets,
+// every misbehave test below runs the bots on delta snapshots.
 
 TEST_CASE("bots sending garbage are dropped; the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("garbage", "bad_request");
-}
-
-TEST_CASE("bots sending NaN inputs are dropped; the others keep their snapshot rate", "[e2e]") {
-    check_misbehaving_share("nan", "bad_input");
 }
 
 TEST_CASE("bots with an oversize frame are dropped; the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("oversize", "too_large");
 }
 
+// Also in tests/simnet/match_play_tests.cpp; kept here as the one process test of a refusal
+// that comes from the match (not the framing or the decoder) travelling back over a socket.
 TEST_CASE("flooding bots are dropped; the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("flood", "rate_limit");
 }

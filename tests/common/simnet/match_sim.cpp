@@ -34,6 +34,9 @@ match_sim::match_sim(const match::match_config& config, const world::world_confi
         bots::client_params p;
         p.index = i;
         p.kind = bots::resolve_behavior(options.behavior, i);
+        if (options.misbehave != bots::misbehavior::none &&
+            bots::is_misbehaving(i, options.clients, options.misbehave_share))
+            p.mode = options.misbehave;
         p.seed = options.seed;
         p.name = "sim-" + std::to_string(i);
         p.delta_snapshots = options.delta_snapshots;

@@ -28,6 +28,9 @@ struct sim_options {
     bots::behavior_choice behavior = bots::behavior_choice::mixed;
     bool delta_snapshots = true;
     sim_time launch_spacing = 5 * ms;  // client i connects at i × this
+    // A fault for a share of the clients, chosen as arena-bots chooses them (misbehave.hpp).
+    bots::misbehavior misbehave = bots::misbehavior::none;
+    double misbehave_share = 0.1;
 };
 
 class match_sim {
