@@ -67,7 +67,7 @@ TEST_CASE("seeds and bot indices give different random walks", "[bots][behavior]
     CHECK_FALSE(same_inputs(base, drive(behavior_kind::random, 1, 1, 300)));
 }
 
-TEST_CASE("inputs are finite and within [-1, 1]; idle sends zeros", "[bots][behavior]") {
+TEST_CASE("inputs are finite and within [-1, 1], and idle sends zeros", "[bots][behavior]") {
     const auto kind = GENERATE(behavior_kind::random, behavior_kind::seek, behavior_kind::orbit);
     bool moved = false;
     for (const auto& in : drive(kind, 9, 2, 1200)) {

@@ -153,21 +153,21 @@ TEST_CASE("bots join, get snapshots at the snapshot rate and predict their own b
 // tested without sockets in tests/simnet/match_play_tests.cpp, in virtual time. Over sockets,
 // every misbehave test below runs the bots on delta snapshots.
 
-TEST_CASE("bots sending garbage are dropped; the others keep their snapshot rate", "[e2e]") {
+TEST_CASE("bots sending garbage are dropped while the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("garbage", "bad_request");
 }
 
-TEST_CASE("bots with an oversize frame are dropped; the others keep their snapshot rate", "[e2e]") {
+TEST_CASE("bots with an oversize frame are dropped while the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("oversize", "too_large");
 }
 
 // Also in tests/simnet/match_play_tests.cpp; kept here as the one process test of a refusal
 // that comes from the match (not the framing or the decoder) travelling back over a socket.
-TEST_CASE("flooding bots are dropped; the others keep their snapshot rate", "[e2e]") {
+TEST_CASE("flooding bots are dropped while the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("flood", "rate_limit");
 }
 
-TEST_CASE("bots closing mid-frame leave; the others keep their snapshot rate", "[e2e]") {
+TEST_CASE("bots closing mid-frame leave while the others keep their snapshot rate", "[e2e]") {
     check_misbehaving_share("abrupt-close", "closed mid-frame");
 }
 

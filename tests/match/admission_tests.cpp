@@ -89,7 +89,7 @@ TEST_CASE("the Hello's limits: version, name and token length, each with its cod
     CHECK(join(m, fine, hello("ann", std::string(16, 't'))) != 0);
 }
 
-TEST_CASE("a token checker decides who the player is; a refused token is unauthorized", "[match][admission]") {
+TEST_CASE("a token checker decides who the player is, and a refused token is unauthorized", "[match][admission]") {
     auto check = [](std::string_view token) {
         if (token == "good") return match::token_verdict{"signed-bob", {}};
         return match::token_verdict{std::nullopt, "token forged"};
@@ -144,7 +144,7 @@ TEST_CASE("a connection that never says Hello is refused after the handshake tim
     CHECK_FALSE(quick.rejected);
 }
 
-TEST_CASE("a stale input is ignored and counted; a Ping gets a Pong with the tick", "[match][admission]") {
+TEST_CASE("a stale input is ignored and counted, and a Ping gets a Pong with the tick", "[match][admission]") {
     match::match m({}, small_world());
     client c;
     REQUIRE(join(m, c, hello()) != 0);

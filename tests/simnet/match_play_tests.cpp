@@ -97,11 +97,11 @@ void check_misbehaving_share(bots::misbehavior fault, const std::string& expecte
 
 }  // namespace
 
-TEST_CASE("clients sending NaN inputs are dropped; the others keep their snapshot rate", "[simnet][match]") {
+TEST_CASE("clients sending NaN inputs are dropped while the others keep their snapshot rate", "[simnet][match]") {
     check_misbehaving_share(bots::misbehavior::nan, "bad_input");
 }
 
-TEST_CASE("flooding clients are dropped; the others keep their snapshot rate", "[simnet][match]") {
+TEST_CASE("flooding clients are dropped while the others keep their snapshot rate", "[simnet][match]") {
     check_misbehaving_share(bots::misbehavior::flood, "rate_limit");
 }
 

@@ -16,7 +16,7 @@ TEST_CASE("compute_cos_sin agrees with libm to float precision", "[world][trig]"
     }
 }
 
-TEST_CASE("wrap_angle keeps angles in (-pi, pi]", "[world][trig]") {
+TEST_CASE("wrap_angle keeps angles in -pi < a <= pi", "[world][trig]") {
     for (real a : {0.0f, 3.2f, -3.2f, 100.0f, -100.0f, 7.0f, pi, -pi}) {
         const real w = wrap_angle(a);
         CHECK(w > -pi);
@@ -25,7 +25,7 @@ TEST_CASE("wrap_angle keeps angles in (-pi, pi]", "[world][trig]") {
     }
 }
 
-TEST_CASE("compute_cos_sin of angles outside (-pi, pi] loses only the float wrap's rounding", "[world][trig]") {
+TEST_CASE("compute_cos_sin of angles outside -pi < a <= pi loses only the float wrap's rounding", "[world][trig]") {
     for (int k = -2000; k <= 2000; k += 7) {
         const real a = static_cast<real>(k) * 0.01f;
         const cos_sin cs = compute_cos_sin(a);

@@ -110,7 +110,7 @@ TEST_CASE("Extreme values and elapsed times round-trip: prediction never overflo
     }
 }
 
-TEST_CASE("Bodies exactly as predicted cost about one bit; the codec uses the prediction", "[protocol][delta]") {
+TEST_CASE("Bodies exactly as predicted cost about one bit: the codec uses the prediction", "[protocol][delta]") {
     rng r(12);
     auto bodies = ad::test::make_bodies(r, ad::test::motion::drift, 1000, 400);
     for (auto& b : bodies) b.vx = b.vy = b.w = 0;  // at rest: prediction is exact

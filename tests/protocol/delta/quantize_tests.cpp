@@ -72,13 +72,13 @@ TEST_CASE("Angle error stays within π/65536 rad, across the ±π seam too", "[p
     CHECK(worst <= ad::max_angle_error + 2.5e-7);
 }
 
-TEST_CASE("Angles outside (−π, π] wrap onto the circle", "[protocol][delta]") {
+TEST_CASE("Angles outside −π < a ≤ π wrap onto the circle", "[protocol][delta]") {
     CHECK(ad::quantize_angle(static_cast<float>(3 * ad::pi)) == ad::quantize_angle(static_cast<float>(ad::pi)));
     CHECK(ad::quantize_angle(7.0f) == ad::quantize_angle(static_cast<float>(7.0 - 2 * ad::pi)));
     CHECK(ad::quantize_angle(-100.0f) == ad::quantize_angle(static_cast<float>(-100.0 + 32 * ad::pi)));
 }
 
-TEST_CASE("The half-turn −32768 dequantises to +π, keeping BodyState's (−π, π]", "[protocol][delta]") {
+TEST_CASE("The half-turn −32768 dequantises to +π, keeping BodyState's −π < a ≤ π", "[protocol][delta]") {
     CHECK(ad::dequantize_angle(std::numeric_limits<std::int16_t>::min()) == static_cast<float>(ad::pi));
     CHECK(ad::dequantize_angle(32767) < static_cast<float>(ad::pi));
     CHECK(ad::dequantize_angle(-32767) > static_cast<float>(-ad::pi));
