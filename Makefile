@@ -111,4 +111,4 @@ bench-e2e: build bench-deps
 	./bench/e2e.sh $(BUILD)/bin
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-*
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-* build-aarch64-*

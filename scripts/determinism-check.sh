@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Cross-compiler determinism check (issue 5, ../shared/DETERMINISM.md rule 8): the golden
-# recording must replay to the same hash at every tick from a clang++ and a g++ build, at -O0,
-# -O2 and -O3. Builds only arena-replay (world, config, protocol; no Asio, which clang++ 14
-# cannot build) in three extra build directories, then compares the --dump-hashes outputs
-# byte for byte with the Release g++ build's.
+# Cross-compiler and cross-architecture determinism check (docs/DETERMINISM.md): the golden
+# recording must replay to the same hash at every tick from clang++ and g++ builds at -O0,
+# -O2 and -O3, and from aarch64 builds (Debian's g++-aarch64-linux-gnu, static, run under
+# qemu-aarch64-static) at -O0, -O2 and -O3. Builds only arena-replay and its libraries (world,
+# config, protocol; no Asio, which clang++ 14 cannot build) in extra build directories, then
+# compares each --dump-hashes output byte for byte with the Release g++ build's.
 #
 # usage: scripts/determinism-check.sh [RELEASE_BUILD_DIR]   (default: build)
-# Exit 0 when every build agrees; 1 when one differs or fails to build.
+# Exit 0 when every build agrees; 1 when one differs, fails to build, or a tool is missing.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -17,26 +18,44 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 # name  compiler  CMake build type  extra flags. Debug is -O0 -g (no sanitizers); CMake's Release
-# is -O3, so the clang Release build is pinned to -O2 and the main g++ build covers -O3.
+# is -O3, so the Release builds that test -O2 pin it, and the main g++ build covers native -O3.
+# The compiler "aarch64" means the cross toolchain file, and running the result under qemu.
 builds=(
   "clang-O0 clang++-14 Debug"
   "clang-O2 clang++-14 Release -DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG"
   "gcc-O0 g++ Debug"
+  "aarch64-O0 aarch64 Debug"
+  "aarch64-O2 aarch64 Release -DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG"
+  "aarch64-O3 aarch64 Release"
 )
+toolchain=$root/cmake/aarch64-linux-gnu.cmake
+qemu=qemu-aarch64-static
+
+# Every tool must be there: a check that cannot run fails rather than passing quietly.
+for tool in clang++-14 g++ aarch64-linux-gnu-g++ $qemu; do
+  if ! command -v "$tool" >/dev/null 2>&1; then
+    echo "determinism-check: FAIL: $tool not found (run 'make deps')" >&2
+    exit 1
+  fi
+done
+
+# Rebuilds of unchanged sources come from the compiler cache when one is installed.
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
 failed=0
 
-# Builds arena-replay in DIR; the log is printed only when something fails.
+# Configures and builds arena-replay in DIR; the log is printed only when something fails.
 build_replay() {
   local dir=$1 compiler=$2 type=$3
   shift 3
   local log=$out/$(basename "$dir").log
-  if [[ ! -f $dir/build.ninja ]]; then
-    if ! cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_BUILD_TYPE="$type" \
-        -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_TESTS=OFF "$@" >"$log" 2>&1; then
-      cat "$log" >&2
-      return 1
-    fi
+  local target=(-DCMAKE_CXX_COMPILER="$compiler")
+  [[ $compiler == aarch64 ]] && target=(-DCMAKE_TOOLCHAIN_FILE="$toolchain")
+  if ! cmake -S "$root" -B "$dir" -G Ninja "${target[@]}" -DCMAKE_BUILD_TYPE="$type" "${launcher[@]}" \
+      -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_TESTS=OFF "$@" >"$log" 2>&1; then
+    cat "$log" >&2
+    return 1
   fi
   if ! cmake --build "$dir" --target arena-replay >>"$log" 2>&1; then
     tail -n 40 "$log" >&2
@@ -44,11 +63,12 @@ build_replay() {
   fi
 }
 
-# Replays the golden file with BINARY into NAME.csv.
+# Replays the golden file with BINARY (under RUNNER, if any) into NAME.csv. arena-replay stops
+# at the first hash that differs from the recorded one; its last line says which.
 dump() {
-  local name=$1 binary=$2
-  if ! "$binary" --dump-hashes "$golden" >"$out/$name.csv" 2>"$out/$name.err"; then
-    echo "determinism-check: $name: arena-replay failed: $(tail -n 1 "$out/$name.err")" >&2
+  local name=$1 binary=$2 runner=${3:-}
+  if ! $runner "$binary" --dump-hashes "$golden" >"$out/$name.csv" 2>"$out/$name.err"; then
+    echo "determinism-check: FAIL $name: arena-replay: $(tail -n 1 "$out/$name.err")"
     return 1
   fi
 }
@@ -65,7 +85,6 @@ if ! cmake --build "$release" --target arena-replay >"$out/reference.log" 2>&1; 
   exit 1
 fi
 if ! dump gcc-O3 "$release/bin/arena-replay"; then
-  echo "determinism-check: FAIL gcc-O3 ($release): could not build or replay" >&2
   exit 1
 fi
 ticks=$(($(wc -l <"$out/gcc-O3.csv") - 2))
@@ -76,8 +95,14 @@ for spec in "${builds[@]}"; do
   dir=$root/build-$name
   flags=()
   [[ -n ${extra:-} ]] && flags=("$extra")
-  if ! build_replay "$dir" "$compiler" "$type" "${flags[@]}" || ! dump "$name" "$dir/bin/arena-replay"; then
-    echo "determinism-check: FAIL $name ($compiler $type): could not build or replay"
+  runner=
+  [[ $compiler == aarch64 ]] && runner=$qemu
+  if ! build_replay "$dir" "$compiler" "$type" "${flags[@]}"; then
+    echo "determinism-check: FAIL $name ($compiler $type): arena-replay does not build"
+    failed=1
+    continue
+  fi
+  if ! dump "$name" "$dir/bin/arena-replay" $runner; then
     failed=1
     continue
   fi
@@ -91,7 +116,8 @@ for spec in "${builds[@]}"; do
 done
 
 if ((failed)); then
-  echo "determinism-check: FAILED: the builds disagree (see ../shared/DETERMINISM.md)"
+  echo "determinism-check: FAILED: the builds disagree (see docs/DETERMINISM.md)"
   exit 1
 fi
-echo "determinism-check: passed: g++ and clang++ at -O0, -O2 and -O3 replay the golden file identically"
+echo "determinism-check: passed: g++ and clang++ at -O0, -O2 and -O3, and aarch64 at -O0, -O2 and -O3," \
+  "replay the golden file identically"
