@@ -12,10 +12,18 @@ ifneq ($(shell command -v ccache 2>/dev/null),)
 CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 endif
 
-# Debian packages the build and the tests need (see ../shared/DEPS.md).
+# Debian packages the build and every test need (see ../shared/DEPS.md): nothing in `make test`
+# may skip for want of a tool. libboost1.81-dev: Boost.Asio and Beast (only 1.81: it conflicts
+# with 1.74); libenet-dev: the UDP transport; g++-aarch64-linux-gnu and qemu-user-static: the
+# aarch64 replay check; ccache: rebuilds in CI and in the determinism check.
 PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
-  libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus
+  libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus ccache \
+  g++-aarch64-linux-gnu qemu-user-static libenet-dev
+# npm runs the Dockerfile linters. Debian's nodejs brings it along with npm; but where node
+# already came from elsewhere with npm inside, installing Debian's npm over it fails (held
+# packages), so these are installed only when there is no `npm` command.
+NPM_PACKAGES := nodejs npm
 
 .PHONY: all deps build run test test-fast bench bench-deps bench-e2e clean fuzz lint-docker format format-check
 
@@ -23,6 +31,8 @@ all: build
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	command -v npm >/dev/null 2>&1 || missing="$$missing $(NPM_PACKAGES)"; \
+	missing=$$(echo $$missing); \
 	if [ -n "$$missing" ]; then \
 	  echo "installing:" $$missing; \
 	  sudo=""; [ "$$(id -u)" = 0 ] || sudo=sudo; \
@@ -85,12 +95,11 @@ test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
 
 # The two Dockerfile linters from npm (see ../shared/DEPS.md), installed on first use into
-# .tools/, which ignores itself. Without npm (e.g. inside the image's own build stage, where
-# linting the Dockerfile proves nothing) it says so and skips.
+# .tools/, which ignores itself. Without npm it fails: `make deps` installs it.
 TOOLS ?= .tools
 DOCKER_LINTERS := dockerfile-utils@0.16.3 dockerfilelint@1.8.0
 lint-docker:
-	@if ! command -v npm >/dev/null 2>&1; then echo "lint-docker: npm not found (apt-get install npm): skipped"; exit 0; fi; \
+	@if ! command -v npm >/dev/null 2>&1; then echo "lint-docker: npm not found (run 'make deps')" >&2; exit 1; fi; \
 	mkdir -p $(TOOLS) && echo '*' > $(TOOLS)/.gitignore; \
 	if [ ! -x $(TOOLS)/node_modules/.bin/dockerfile-utils ] || [ ! -x $(TOOLS)/node_modules/.bin/dockerfilelint ]; then \
 	  npm install --prefix $(TOOLS) --no-audit --no-fund --silent $(DOCKER_LINTERS) || exit 1; \
