@@ -1,6 +1,6 @@
 #pragma once
 // Sine and cosine from + − × ÷ only, so that every compiler and libm gives the same bits
-// (glibc's sinf and GCC's constant folding disagree with clang's; DETERMINISM.md rule 2).
+// (glibc's sinf and GCC's constant folding disagree with clang's; docs/DETERMINISM.md rule 2).
 #include "server/world/types.hpp"
 
 namespace arena::world {

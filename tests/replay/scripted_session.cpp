@@ -30,7 +30,7 @@ struct player {
 };
 
 // One side effect per statement: argument evaluation order differs between compilers
-// (DETERMINISM.md rule 3).
+// (docs/DETERMINISM.md rule 3).
 void maybe_move_stick(world::rng& script, world::player_input& stick) {
     if (script.next_u64() % 20 != 0) return;
     const world::real thrust = script.uniform(-1, 1);
