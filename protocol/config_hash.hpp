@@ -1,7 +1,7 @@
 #pragma once
 // Welcome.world_config_hash: lets a predicting client check that it builds the world from
-// exactly the configuration the server runs. FNV-1a 64 over the bytes, because it is
-// defined in a few lines and so is easy to reimplement in any client language.
+// exactly the configuration the server runs. FNV-1a 64 over the bytes (server/world/fnv1a.hpp),
+// because it is defined in a few lines and so is easy to reimplement in any client language.
 #include <cstdint>
 #include <string_view>
 

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cstring>
 
+#include "server/world/little_endian.hpp"
+
 namespace arena::protocol {
 
 frame_reader::frame_reader(std::uint32_t max_body)
@@ -59,8 +61,7 @@ std::size_t frame_reader::feed(std::span<const std::uint8_t> in) {
 void frame_reader::on_prefix_complete() {
     const std::uint8_t* p = bytes();
     // Little-endian on the wire whatever the host.
-    const std::uint32_t length =
-        std::uint32_t{p[0]} | (std::uint32_t{p[1]} << 8) | (std::uint32_t{p[2]} << 16) | (std::uint32_t{p[3]} << 24);
+    const std::uint32_t length = world::load_le32(p);
     if (length > max_body_) {
         fail(failure::too_large, "frame length " + std::to_string(length) + " exceeds the limit of " +
                                      std::to_string(max_body_) + " bytes");

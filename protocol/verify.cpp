@@ -3,12 +3,10 @@
 #include <cstring>
 #include <string>
 
+#include "server/world/little_endian.hpp"
+
 namespace arena::protocol {
 namespace {
-
-std::uint32_t read_le32(const std::uint8_t* p) {
-    return std::uint32_t{p[0]} | (std::uint32_t{p[1]} << 8) | (std::uint32_t{p[2]} << 16) | (std::uint32_t{p[3]} << 24);
-}
 
 bool is_known_payload(Payload type) {
     // Generated VerifyPayload() accepts NONE and unknown types (forward compatibility); we
@@ -25,7 +23,7 @@ result<const Message*> verify_message(std::span<const std::uint8_t> frame, const
         return r::failure("frame of " + std::to_string(frame.size()) +
                           " bytes is too short to hold a length prefix and a message");
     }
-    const std::uint32_t length = read_le32(frame.data());
+    const std::uint32_t length = world::load_le32(frame.data());
     if (length != frame.size() - frame_prefix_size) {
         return r::failure("length prefix " + std::to_string(length) + " does not match the " +
                           std::to_string(frame.size() - frame_prefix_size) + " body bytes");

@@ -8,14 +8,11 @@
 
 #include "server/config/config_json.hpp"
 #include "server/replay/status.hpp"
+#include "server/world/little_endian.hpp"
 
 namespace arena::replay {
 
 namespace {
-
-uint32_t read_le32(const uint8_t* p) {
-    return uint32_t{p[0]} | (uint32_t{p[1]} << 8) | (uint32_t{p[2]} << 16) | (uint32_t{p[3]} << 24);
-}
 
 std::string hex32(uint32_t v) {
     char text[16];
@@ -114,7 +111,7 @@ protocol::result<record> reader::read_record() {
                                                : "record identifier " + quoted_bytes(head + 8, 4) +
                                                      " where \"ARPL\" was expected: the file is corrupted"));
     }
-    const uint32_t length = read_le32(head);
+    const uint32_t length = world::load_le32(head);
     if (length < min_record_body || length > max_record_body) {
         return r::failure(at(start, "bad record length " + std::to_string(length) +
                                         " (valid: " + std::to_string(min_record_body) + " to " +
@@ -133,7 +130,7 @@ protocol::result<record> reader::read_record() {
         return r::failure(at(start, "read failed: the file is shorter than when it was opened"));
     }
     const std::span<const uint8_t> frame(bytes, record_prefix_size + length);
-    const uint32_t stored = read_le32(bytes + frame.size());
+    const uint32_t stored = world::load_le32(bytes + frame.size());
     const uint32_t computed = record_checksum(frame.subspan(record_prefix_size));
     if (stored != computed) {
         return r::failure(at(start, "checksum mismatch (stored " + hex32(stored) + ", computed " + hex32(computed) +

@@ -4,15 +4,13 @@
 
 #include "protocol/replay_generated.h"
 #include "server/replay/status.hpp"
+#include "server/world/fnv1a.hpp"
+#include "server/world/little_endian.hpp"
 
 namespace arena::replay {
 namespace fb = protocol::replay;
 
 namespace {
-
-void put_le32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
 
 bool is_known_content(fb::Content type) {
     // The generated verifier accepts NONE and unknown tags (forward compatibility); a replay
@@ -63,19 +61,16 @@ protocol::result<record> decode_tick(const fb::Tick& t) {
 }  // namespace
 
 uint32_t record_checksum(std::span<const uint8_t> body) {
-    uint32_t h = 2166136261u;
-    for (uint8_t b : body) {
-        h ^= b;
-        h *= 16777619u;
-    }
-    return h;
+    world::fnv1a_32 h;
+    h.add_bytes(body);
+    return h.value();
 }
 
 void record_encoder::finish_into(std::vector<uint8_t>& out) {
     const uint8_t* data = builder_.GetBufferPointer();
     const size_t size = builder_.GetSize();  // prefix included
     out.insert(out.end(), data, data + size);
-    put_le32(out, record_checksum({data + record_prefix_size, size - record_prefix_size}));
+    world::append_le32(out, record_checksum({data + record_prefix_size, size - record_prefix_size}));
     builder_.Clear();
 }
 

@@ -44,8 +44,8 @@ struct end_marker {
 
 using record = std::variant<header, match::tick_record, hash_check, end_marker>;
 
-// FNV-1a 32 (offset basis 2166136261, prime 16777619): any single changed byte changes it,
-// since every step is a bijection of the 32-bit state.
+// FNV-1a 32 (server/world/fnv1a.hpp; offset basis 2166136261, prime 16777619): any single
+// changed byte changes it, since every step is a bijection of the 32-bit state.
 uint32_t record_checksum(std::span<const uint8_t> body);
 
 // Appends whole records (prefix, body, checksum) to a byte buffer, reusing one builder.

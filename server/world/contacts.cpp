@@ -170,11 +170,6 @@ void correct_penetration(std::span<body> bodies, std::span<const contact> contac
     }
 }
 
-void wrap_positions(std::span<body> bodies, const world_config& config) {
-    if (config.boundary != boundary::wrap) return;
-    for (body& b : bodies) wrap_position(b, config);
-}
-
 }  // namespace arena::world
 
 namespace arena::world {

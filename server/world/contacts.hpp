@@ -56,7 +56,4 @@ private:
     std::vector<entry> entries_;  // sorted by key
 };
 
-// Wrap-around worlds: positions back into [0, size).
-void wrap_positions(std::span<body> bodies, const world_config& config);
-
 }  // namespace arena::world

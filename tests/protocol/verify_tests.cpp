@@ -9,6 +9,7 @@
 #include "protocol/messages.hpp"
 #include "protocol/verify.hpp"
 #include "protocol/version.hpp"
+#include "server/world/little_endian.hpp"
 
 namespace ap = arena::protocol;
 using Catch::Contains;
@@ -30,7 +31,7 @@ std::vector<std::uint8_t> message_with(ap::Payload type, bool with_table,
 }
 
 void set_le32(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+    arena::world::store_le32(bytes.data() + at, v);
 }
 
 // Writes the prefix that matches bytes' actual size, so only the body is at fault.

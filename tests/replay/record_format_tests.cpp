@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/replay/record_format.hpp"
+#include "server/world/little_endian.hpp"
 
 using namespace arena;
 using namespace arena::replay;
@@ -28,12 +29,8 @@ aligned_frame frame_of(const std::vector<uint8_t>& bytes) {
     f.size = bytes.size() - record_checksum_size;
     f.words.resize((bytes.size() + 7) / 8);
     std::memcpy(f.words.data(), bytes.data(), bytes.size());
-    uint32_t stored = 0;
-    for (int i = 0; i < 4; ++i) stored |= uint32_t{bytes[f.size + i]} << (8 * i);
-    CHECK(stored == record_checksum(f.span().subspan(record_prefix_size)));
-    uint32_t length = 0;
-    for (int i = 0; i < 4; ++i) length |= uint32_t{bytes[i]} << (8 * i);
-    CHECK(length == f.size - record_prefix_size);
+    CHECK(world::load_le32(bytes.data() + f.size) == record_checksum(f.span().subspan(record_prefix_size)));
+    CHECK(world::load_le32(bytes.data()) == f.size - record_prefix_size);
     return f;
 }
 

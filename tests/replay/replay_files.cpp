@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "server/world/little_endian.hpp"
+
 namespace arena::replay::testing {
 
 std::string golden_path() {
@@ -40,8 +42,7 @@ std::vector<uint64_t> record_offsets(const std::vector<uint8_t>& bytes) {
     uint64_t at = 0;
     while (at + 4 <= bytes.size()) {
         offsets.push_back(at);
-        const uint32_t length = uint32_t{bytes[at]} | (uint32_t{bytes[at + 1]} << 8) | (uint32_t{bytes[at + 2]} << 16) |
-                                (uint32_t{bytes[at + 3]} << 24);
+        const uint32_t length = world::load_le32(bytes.data() + at);
         at += 4 + uint64_t{length} + 4;
     }
     return offsets;

@@ -6,26 +6,22 @@
 #include <vector>
 
 #include "protocol/delta/quantize.hpp"
+#include "server/world/splitmix64.hpp"
 
 namespace arena::protocol::delta::test {
 
-// splitmix64 (DETERMINISM.md rule 4).
+// The code base's splitmix64, with the conversions these tests draw.
 class rng {
 public:
     explicit rng(std::uint64_t seed) : s_(seed) {}
-    std::uint64_t next() noexcept {
-        std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
+    std::uint64_t next() noexcept { return s_.next(); }
     double uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
     double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
     std::uint64_t below(std::uint64_t n) noexcept { return next() % n; }  // bias irrelevant here
     bool chance(double p) noexcept { return uniform() < p; }
 
 private:
-    std::uint64_t s_;
+    world::splitmix64 s_;
 };
 
 enum class motion { rest, drift, player };
