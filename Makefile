@@ -106,7 +106,7 @@ lint-docker:
 	fi; \
 	set -e; cd $(TOOLS) && npx --yes dockerfile-utils lint ../Dockerfile && npx --yes dockerfilelint ../Dockerfile
 
-# Box2D 2.4.1, the peer in item 7, is only for the benchmarks (the Colyseus peer needs node and
+# Box2D 2.4.1, the peer the world step is compared with, is only for the benchmarks (the Colyseus peer needs node and
 # npm, which the machine image has; bench/e2e.sh skips it with a note without them).
 BENCH_PACKAGES := libbox2d-dev
 bench-deps:

@@ -1,4 +1,4 @@
-// arena-bench: the world and protocol benchmarks of issue 6, one JSON line per measurement on
+// arena-bench: the world and protocol benchmarks, one JSON line per measurement on
 // stdout (bench/table.py turns them into the table of bench/README.md).
 //
 //   step       world step, asteroids preset with collisions, 1k / 10k / 100k bodies
@@ -6,7 +6,7 @@
 //   snapshot   snapshot_encoder::build + copy_with_ack: bodies per second, bytes per body
 //   replay     a recorded 64-player session re-simulated through the replayer, × real time
 //   bandwidth  256 moving players, full against delta snapshots, whole world and a view radius;
-//              1000 players with a view radius (issue 7)
+//              1000 players with a view radius
 //
 // usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick]
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Issue 7's bandwidth figures without sockets: a game of `players` moving players whose clients
+// The bandwidth figures without sockets: a game of `players` moving players whose clients
 // each receive every snapshot, full (BodyState) or delta, and acknowledge after a round trip.
 #include <cstdint>
 

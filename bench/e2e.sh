@@ -2,7 +2,7 @@
 # make bench-e2e: arena-server pinned to CPU 1 and arena-bots to CPU 0, 64, 256 and 512 bots
 # for 20 s each at 60 Hz ticks and 20 Hz snapshots (the server's defaults: delta snapshots,
 # 100 m view radius); 256 bots on the old path (full BodyState snapshots of the whole world)
-# for the bandwidth comparison; 1000 bots with a view radius (issue 7); then the Colyseus peer
+# for the bandwidth comparison; 1000 bots with a view radius; then the Colyseus peer
 # and Arena under the same 200-client load in the same minute. One markdown table per part.
 # Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), E2E_LARGE (1000), E2E_LARGE_RADIUS (50),
 #      COLYSEUS (../shared/peers/colyseus).

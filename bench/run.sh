@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `make bench`: runs the benchmarks of issue 6 and prints one markdown table (see README.md).
+# `make bench`: runs the benchmarks and prints one markdown table (see README.md).
 #
 # usage: bench/run.sh [BIN_DIR]   (default: build/bin, a Release build)
 # env:   BENCH_QUICK=1       fewer timed steps (a smoke run, not for quoting)
@@ -42,7 +42,7 @@ for ((k = 1; k < runs; ++k)); do
   "${pin[@]}" "$bin/arena-bench" "${quick[@]}" --only step,integrate >>"$out/arena.jsonl"
 done
 
-# Item 7: our world on Box2D's scene, interleaved with Box2D 2.4.1 by their run_all.py.
+# Our world on Box2D's scene, interleaved with Box2D 2.4.1 by their run_all.py.
 if [[ ! -f $peer/run_all.py || ! -f $peer/bench_scene.hpp ]]; then
   notes+=("Box2D comparison skipped: $peer not found.")
 elif [[ ! -x $bin/arena-bench-box2d-scene ]]; then

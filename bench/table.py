@@ -27,12 +27,12 @@ def ok(flag):
 
 
 def bandwidth_table(rows):
-    """Issue 7: full against delta snapshots per (players, view radius), from the same run."""
+    """Bandwidth: full against delta snapshots per (players, view radius), from the same run."""
     bw = [r for r in rows if r["bench"] == "bandwidth"]
     if not bw:
         return
     print()
-    print("Bandwidth (issue 7): every player moving (thrust and turn re-chosen every 0.5 s), each client")
+    print("Bandwidth: every player moving (thrust and turn re-chosen every 0.5 s), each client")
     print("acknowledging a snapshot 100 ms after it arrived; bytes are whole frames (length prefix and FlatBuffers")
     print("included), \"codec\" the delta bytes alone; tick = world step + that tick's share of the snapshots.")
     print()

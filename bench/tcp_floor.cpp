@@ -1,9 +1,9 @@
 // arena-bench-tcp-floor: the least CPU a TCP server can spend on the Colyseus comparison's load
-// (issue 6, item 6). K clients over loopback each send one small message per tick at 60 Hz; the
-// server sends each client one snapshot-sized message at 20 Hz. The server does nothing else:
-// level-triggered epoll (no re-arming), one recv per readable socket, one send per snapshot, no
-// parsing, no game. Its thread's CPU time (user + system) is the floor under Arena's and
-// Colyseus' figures: whatever they spend above it is the game and the framework.
+// (the server-CPU comparison in bench/README.md). K clients over loopback each send one small message per tick at 60
+// Hz; the server sends each client one snapshot-sized message at 20 Hz. The server does nothing else: level-triggered
+// epoll (no re-arming), one recv per readable socket, one send per snapshot, no parsing, no game. Its thread's CPU time
+// (user + system) is the floor under Arena's and Colyseus' figures: whatever they spend above it is the game and the
+// framework.
 //
 // The clients run on another thread pinned to another CPU, as arena-bots and Colyseus' load
 // generator do. Over loopback the kernel does the receiving side's TCP work in the sender's

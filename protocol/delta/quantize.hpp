@@ -23,8 +23,8 @@ struct quantized_body {
     std::uint32_t owner = 0;
     std::int32_t x = 0;                 // 1/256 m
     std::int32_t y = 0;                 // 1/256 m
-    std::int32_t vx = 0;                // 1/256 m/s
-    std::int32_t vy = 0;                // 1/256 m/s
+    std::int32_t vx = 0;                // 1/32 m/s
+    std::int32_t vy = 0;                // 1/32 m/s
     std::int16_t angle = 0;             // 2π/65536 rad; −32768 is +π (BodyState's range is (−π, π])
     std::int16_t angular_velocity = 0;  // 1/256 rad/s
 

@@ -1,5 +1,5 @@
 #pragma once
-// Each client's snapshot frame for one tick (issue 7, protocol/README.md "Delta snapshots"):
+// Each client's snapshot frame for one tick (protocol/README.md "Delta snapshots"):
 // - clients that said Hello.delta_snapshots get their view, quantised, encoded against the
 //   newest view they acknowledged that the server still keeps, else in full;
 // - other clients get BodyState snapshots: one frame shared by all when the view is the whole

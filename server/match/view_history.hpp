@@ -1,6 +1,6 @@
 #pragma once
 // What the server remembers of the snapshots it sent, so that it can encode each client's
-// next snapshot against the one the client acknowledged (issue 7, protocol/README.md):
+// next snapshot against the one the client acknowledged (delta snapshots, protocol/README.md):
 // - the quantised world at each of the last `depth` snapshot ticks, shared by every client;
 // - per client, which of those bodies each of its last `depth` snapshots held (indices into
 //   the shared state: 4 bytes a body instead of 28).

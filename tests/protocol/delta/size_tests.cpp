@@ -1,6 +1,6 @@
-// Sizes: bytes per body in view for the scenes issue 7 names, at 60 Hz ticks and 20 Hz
-// snapshots (3 ticks between a snapshot and its baseline), against BodyState's 32 bytes.
-// Prints a table; checks the issue's target of at most 4 bytes per body for a mixed scene
+// Sizes: bytes per body in view for the delta codec's reference scenes, at 60 Hz ticks and
+// 20 Hz snapshots (3 ticks between a snapshot and its baseline), against BodyState's 32 bytes.
+// Prints a table; checks the bandwidth target of at most 4 bytes per body for a mixed scene
 // of 1/3 thrusting, turning players and 2/3 drifting rocks.
 #include <catch2/catch.hpp>
 
