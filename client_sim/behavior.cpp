@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "server/world/broadphase.hpp"
+#include "server/world/splitmix64.hpp"
 #include "server/world/trig.hpp"
 
 namespace arena::bots {
@@ -16,8 +17,8 @@ using world::vec2;
 // One stream per (seed, index): splitmix64 of the seed, offset by the index times the golden
 // ratio constant, so that neighbouring bots and neighbouring seeds draw unrelated numbers.
 std::uint64_t stream_seed(std::uint64_t seed, std::uint32_t index) {
-    world::rng mix(seed);
-    return mix.next_u64() ^ (0x9e3779b97f4a7c15ULL * (std::uint64_t{index} + 1));
+    world::splitmix64 mix(seed);
+    return mix.next() ^ (world::splitmix64::gamma * (std::uint64_t{index} + 1));
 }
 
 float clamp_unit(float v) {

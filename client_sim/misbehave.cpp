@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "protocol/version.hpp"
+#include "server/world/little_endian.hpp"
 
 namespace arena::bots {
 
 namespace {
 
 void put_le32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+    world::store_le32(out.data() + at, v);
 }
 
 }  // namespace
