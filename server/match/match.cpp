@@ -330,6 +330,9 @@ void match::send_snapshots() {
 
 match_counters match::counters() const {
     match_counters total = counters_;
+    total.ticks = world_.tick();
+    total.players = players_.size();
+    total.max_players = config_.max_players;
     total.snapshots = fanout_.counters();
     for (const auto& [id, p] : players_) {
         total.input_underruns += p.inputs.underruns();

@@ -21,6 +21,7 @@
 #include "server/match/admission.hpp"
 #include "server/match/close_cause.hpp"
 #include "server/match/connection.hpp"
+#include "server/match/figures.hpp"
 #include "server/match/input_buffer.hpp"
 #include "server/match/logger.hpp"
 #include "server/match/snapshot_fanout.hpp"
@@ -62,7 +63,13 @@ struct match_counters {
     std::map<protocol::RejectCode, uint64_t> rejects;  // Rejects sent, by code
     std::map<std::string, uint64_t> closes;            // connections ended, by close_cause::key()
     fanout_counters snapshots;                         // frames by kind, and the delta frames' bytes and bodies
+    uint64_t ticks = 0;                                // world steps so far
+    uint64_t players = 0;                              // players in the match now
+    uint64_t max_players = 0;                          // the limit
 };
+
+// Every figure of `c`, to `out`: the one place that names them for the stats and /metrics.
+void report(const match_counters& c, figure_sink& out);
 
 class match {
 public:

@@ -9,6 +9,7 @@
 #include "protocol/version.hpp"
 #include "server/net/log.hpp"
 #include "server/net/session.hpp"
+#include "server/net/stats_json.hpp"
 
 namespace arena::net {
 
@@ -106,7 +107,7 @@ boost::asio::awaitable<void> server::accept_loop() {
         }
         auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
         sessions_.emplace(s->id(), s);
-        connections_peak_ = std::max<uint64_t>(connections_peak_, sessions_.size());
+        process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size());
         s->start();
         match_.connect(*s);  // after start(), so that a refused client reads why
     }
@@ -163,30 +164,21 @@ void server::log_stats(int64_t now) {
     window_start_ns_ = now;
 }
 
+ops::process_counters server::process_counters() const {
+    ops::process_counters p = process_;
+    p.connections_open = sessions_.size();
+    p.tick_overruns = clock_.overruns();
+    return p;
+}
+
 ops::server_metrics server::metrics_snapshot() const {
-    const match::match_counters c = match_.counters();
     ops::server_metrics m;
     m.tick_duration_s = tick_seconds_;
-    m.ticks = match_.state().tick();
-    m.tick_overruns = clock_.overruns();
     m.tick_budget_s = 1.0 / options_.match.tick_rate;
-    m.players_connected = match_.player_count();
-    m.players_max = options_.match.max_players;
-    m.connections_open = sessions_.size();
-    m.joins = c.joins;
-    m.leaves = c.leaves;
-    // Every code from 0, so that rate() sees the first reject of a kind.
-    for (const char* const* n = protocol::EnumNamesRejectCode(); *n; ++n) m.rejects[*n] = 0;
-    for (const auto& [code, count] : c.rejects) m.rejects[protocol::EnumNameRejectCode(code)] = count;
-    m.bytes_in = run_traffic_.bytes_in;
-    m.bytes_out = run_traffic_.bytes_out;
-    m.messages_in = run_traffic_.messages_in;
-    m.messages_out = run_traffic_.messages_out;
-    m.snapshots_sent = c.snapshots_sent;
-    m.snapshot_size_bytes = c.snapshot_bytes;
-    m.inputs_received = c.inputs_received;
-    m.input_underruns = c.input_underruns;
-    m.input_overflows = c.input_overflows;
+    m.figures = [match = match_.counters(), process = process_counters()](match::figure_sink& out) {
+        report(match, out);
+        report(process, out);
+    };
     m.draining = stopping_;
     return m;
 }
@@ -197,14 +189,14 @@ void server::on_gone(session& s) {
 }
 
 void server::count_in(size_t bytes) {
-    run_traffic_.bytes_in += bytes;
+    process_.bytes_in += bytes;
     window_traffic_.bytes_in += bytes;
 }
 
 void server::count_out(size_t bytes) {
-    run_traffic_.bytes_out += bytes;
+    process_.bytes_out += bytes;
     window_traffic_.bytes_out += bytes;
-    ++run_traffic_.messages_out;
+    ++process_.messages_out;
 }
 
 void server::shutdown(const std::string& reason) {
@@ -237,12 +229,9 @@ void server::finish() {
 
 void server::write_stats_json(const std::string& path) const {
     const double seconds = static_cast<double>(now_ns() - started_ns_) / 1e9;
-    const match::match_counters c = match_.counters();
-    std::map<std::string, uint64_t> rejects;
-    for (const auto& [code, count] : c.rejects) rejects[protocol::EnumNameRejectCode(code)] = count;
+    const ops::process_counters p = process_counters();
     nlohmann::json j = {
         {"duration_s", seconds},
-        {"ticks", match_.state().tick()},
         {"tick_rate", options_.match.tick_rate},
         {"snapshot_rate", options_.match.snapshot_rate},
         {"tick_ms",
@@ -250,50 +239,26 @@ void server::write_stats_json(const std::string& path) const {
           {"p99", ms(run_ticks_.quantile_ns(0.99))},
           {"max", ms(run_ticks_.max_ns())},
           {"mean", run_ticks_.mean_ns() / 1e6}}},
-        {"overruns", clock_.overruns()},
-        {"players_peak", c.players_peak},
-        {"joins", c.joins},
-        {"leaves", c.leaves},
-        {"rejects", rejects},
-        {"closes", c.closes},
-        {"inputs_received", c.inputs_received},
-        {"input_underruns", c.input_underruns},
-        {"input_overflows", c.input_overflows},
-        {"stale_inputs", c.stale_inputs},
-        {"reconnects", c.reconnects},
-        {"takeovers", c.takeovers},
-        {"snapshots_sent", c.snapshots_sent},
-        {"snapshots",
-         {{"view_radius", options_.match.view_radius},
-          {"delta_frames", c.snapshots.delta_frames},
-          {"keyframes", c.snapshots.keyframes},
-          {"full_frames", c.snapshots.full_frames},
-          {"delta_bytes", c.snapshots.delta_bytes},
-          {"delta_payload_bytes", c.snapshots.delta_payload_bytes},
-          {"delta_bodies", c.snapshots.delta_bodies},
-          {"delta_bytes_per_body", c.snapshots.delta_bodies == 0 ? 0.0
-                                                                 : static_cast<double>(c.snapshots.delta_bytes) /
-                                                                       static_cast<double>(c.snapshots.delta_bodies)}}},
-        {"bytes_in", run_traffic_.bytes_in},
-        {"bytes_out", run_traffic_.bytes_out},
-        {"messages_out", run_traffic_.messages_out},
+        {"snapshots", {{"view_radius", options_.match.view_radius}}},
         {"limits",
          {{"max_players", options_.match.max_players},
           {"max_connections", match_.rules().connection_limit()},
           {"max_pending_handshakes", options_.max_pending_handshakes},
-          {"max_inputs_per_second", options_.match.max_inputs_per_second ? options_.match.max_inputs_per_second
-                                                                         : 2u * options_.match.tick_rate + 10u},
+          {"max_inputs_per_second", match_.rules().input_limit()},
           {"input_buffer", options_.match.input_buffer},
           {"max_frame_bytes", protocol::max_client_frame_body},
           {"max_control_frames", options_.max_control_frames},
           {"socket_send_buffer", options_.socket_send_buffer},
           {"handshake_timeout_s", static_cast<double>(options_.handshake_timeout_ns) / 1e9},
           {"stall_timeout_s", static_cast<double>(options_.stall_timeout_ns) / 1e9}}},
-        {"connections_peak", connections_peak_},
         {"process", process_figures()},
-        {"bytes_in_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_in) / seconds : 0},
-        {"bytes_out_per_s", seconds > 0 ? static_cast<double>(run_traffic_.bytes_out) / seconds : 0},
+        {"bytes_in_per_s", seconds > 0 ? static_cast<double>(p.bytes_in) / seconds : 0},
+        {"bytes_out_per_s", seconds > 0 ? static_cast<double>(p.bytes_out) / seconds : 0},
     };
+    // Every counter, as the match and the process name them (the same list /metrics reads).
+    stats_json_sink figures(j);
+    report(match_.counters(), figures);
+    report(p, figures);
     std::ofstream out(path);
     out << j.dump(2) << "\n";
     if (!out) log_line("cannot write stats to %s", path.c_str());

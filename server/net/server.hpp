@@ -15,6 +15,7 @@
 #include "server/net/tick_clock.hpp"
 #include "server/ops/histogram.hpp"
 #include "server/ops/metrics.hpp"
+#include "server/ops/process_counters.hpp"
 
 namespace arena::net {
 
@@ -40,12 +41,10 @@ struct server_options {
     std::optional<auth::token_secret> token_secret;  // set: only signed, unexpired tokens join
 };
 
-// Figures for the whole run, and for the current stats window.
+// Traffic in the current stats window (the whole run's is in process_counters).
 struct traffic {
     uint64_t bytes_in = 0;
     uint64_t bytes_out = 0;
-    uint64_t messages_in = 0;
-    uint64_t messages_out = 0;
 };
 
 class server {
@@ -63,9 +62,11 @@ public:
     // From sessions. The session's socket is closed: it is forgotten.
     void on_gone(session& s);
     void count_in(size_t bytes);
-    void count_message_in() { ++run_traffic_.messages_in; }
+    void count_message_in() { ++process_.messages_in; }
     // The figures /metrics shows.
     ops::server_metrics metrics_snapshot() const;
+    // The process's counters now.
+    ops::process_counters process_counters() const;
     // True while the tick loop ran a tick within `window_ns`: /healthz and the Agones pings.
     bool ticking(int64_t window_ns = 1'000'000'000) const { return now_ns() - last_tick_ns_ < window_ns; }
     void count_out(size_t bytes);
@@ -101,10 +102,10 @@ private:
     int64_t started_ns_ = 0;
     duration_histogram run_ticks_;
     duration_histogram window_ticks_;
-    traffic run_traffic_, window_traffic_;
+    ops::process_counters process_;  // whole run (connections_open and tick_overruns filled when read)
+    traffic window_traffic_;
     int64_t window_start_ns_ = 0;
     int64_t last_watchdog_ns_ = 0;
-    uint64_t connections_peak_ = 0;
     ops::histogram tick_seconds_;
     int64_t last_tick_ns_ = 0;
 };

@@ -1,14 +1,17 @@
 #pragma once
-// What the server reports to Prometheus, as a plain struct the server fills, and its rendering
-// in the text exposition format. No Asio and no clock: render_metrics is a pure function.
+// What the server reports to Prometheus, and its rendering in the text exposition format. The
+// counters come from the match's and the process's report() (one list of figures for the
+// stats and /metrics); the tick histogram, the lifecycle and /proc figures are added here. No
+// Asio and no clock: render_metrics is a pure function.
 //
 // Naming (https://prometheus.io/docs/practices/naming/): the arena_ prefix, base units
 // (seconds, bytes), _total on counters. No player ids or names as labels: a label value makes
 // a new time series, and players come and go by the thousand.
 #include <cstdint>
-#include <map>
+#include <functional>
 #include <string>
 
+#include "server/match/figures.hpp"
 #include "server/ops/histogram.hpp"
 #include "server/ops/process_stats.hpp"
 
@@ -17,28 +20,9 @@ namespace arena::ops {
 struct server_metrics {
     // Tick loop.
     histogram tick_duration_s{tick_duration_buckets_s()};  // seconds per world step
-    uint64_t ticks = 0;                                    // world steps so far
-    uint64_t tick_overruns = 0;                            // ticks dropped because the loop fell behind
     double tick_budget_s = 0;                              // 1 / tick rate, seconds
-    // Players and connections.
-    uint64_t players_connected = 0;
-    uint64_t players_max = 0;       // --max-players
-    uint64_t connections_open = 0;  // sockets, including those not (yet) joined
-    uint64_t joins = 0;
-    uint64_t leaves = 0;
-    std::map<std::string, uint64_t> rejects;  // by reason code name (protocol RejectCode)
-    // Traffic, whole run.
-    uint64_t bytes_in = 0;
-    uint64_t bytes_out = 0;
-    uint64_t messages_in = 0;
-    uint64_t messages_out = 0;
-    // Snapshots.
-    uint64_t snapshots_sent = 0;       // one per client per broadcast
-    uint64_t snapshot_size_bytes = 0;  // the last snapshot frame built, bytes
-    // Input buffers, all players (departed ones included).
-    uint64_t inputs_received = 0;
-    uint64_t input_underruns = 0;  // a tick found no input and repeated the last one
-    uint64_t input_overflows = 0;  // an input arrived to a full buffer; the oldest went
+    // Every counter and gauge of the match and the process, through their report()s.
+    std::function<void(match::figure_sink&)> figures;
     // Lifecycle.
     bool draining = false;  // shutting down: no new players
     std::string version;    // build version; "" renders the compiled-in one

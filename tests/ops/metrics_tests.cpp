@@ -12,7 +12,9 @@
 #include <set>
 #include <sstream>
 
+#include "server/match/match.hpp"
 #include "server/ops/metrics.hpp"
+#include "server/ops/process_counters.hpp"
 #include "server/ops/process_stats.hpp"
 #include "server/ops/text_format.hpp"
 
@@ -23,24 +25,32 @@ namespace {
 server_metrics sample_metrics() {
     server_metrics m;
     for (double s : {0.0001, 0.0004, 0.0009, 0.003, 0.02, 0.5}) m.tick_duration_s.observe(s);
-    m.ticks = 600;
-    m.tick_overruns = 2;
     m.tick_budget_s = 1.0 / 60;
-    m.players_connected = 3;
-    m.players_max = 64;
-    m.connections_open = 4;
-    m.joins = 5;
-    m.leaves = 2;
-    m.rejects = {{"bad_input", 1}, {"server_full", 0}, {"odd\"reason\\x", 7}};
-    m.bytes_in = 1234;
-    m.bytes_out = 98765;
-    m.messages_in = 300;
-    m.messages_out = 400;
-    m.snapshots_sent = 120;
-    m.snapshot_size_bytes = 812;
-    m.inputs_received = 290;
-    m.input_underruns = 4;
-    m.input_overflows = 1;
+    // The figures as the server reports them: through the match's and the process's report().
+    arena::match::match_counters c;
+    c.ticks = 600;
+    c.players = 3;
+    c.max_players = 64;
+    c.joins = 5;
+    c.leaves = 2;
+    c.rejects = {{arena::protocol::RejectCode::bad_input, 1}};
+    c.closes = {{"bad_input", 1}, {"odd\"reason\\x", 7}};  // a label value that needs escaping
+    c.snapshots_sent = 120;
+    c.snapshot_bytes = 812;
+    c.inputs_received = 290;
+    c.input_underruns = 4;
+    c.input_overflows = 1;
+    process_counters p;
+    p.tick_overruns = 2;
+    p.connections_open = 4;
+    p.bytes_in = 1234;
+    p.bytes_out = 98765;
+    p.messages_in = 300;
+    p.messages_out = 400;
+    m.figures = [c, p](arena::match::figure_sink& out) {
+        report(c, out);
+        report(p, out);
+    };
     m.version = "1.2.3";
     m.process = read_process_stats();
     return m;
@@ -171,7 +181,7 @@ TEST_CASE("ops metrics: the rendered values are the server's figures", "[ops][me
     CHECK(value_of(p, "arena_player_leaves_total") == "2");
     CHECK(value_of(p, "arena_rejects_total", "reason=\"bad_input\"") == "1");
     CHECK(value_of(p, "arena_rejects_total", "reason=\"server_full\"") == "0");
-    CHECK(value_of(p, "arena_rejects_total", "reason=\"odd\\\"reason\\\\x\"") == "7");
+    CHECK(value_of(p, "arena_closes_total", "reason=\"odd\\\"reason\\\\x\"") == "7");
     CHECK(value_of(p, "arena_received_bytes_total") == "1234");
     CHECK(value_of(p, "arena_sent_bytes_total") == "98765");
     CHECK(value_of(p, "arena_received_messages_total") == "300");

@@ -1,0 +1,18 @@
+#include "server/ops/process_counters.hpp"
+
+namespace arena::ops {
+
+void report(const process_counters& c, match::figure_sink& out) {
+    out.counter({"overruns", "arena_tick_overruns_total", "Ticks dropped because the tick loop fell behind."},
+                c.tick_overruns);
+    out.gauge({"", "arena_connections_open", "Open client connections, joined or not."}, c.connections_open);
+    out.gauge({"connections_peak", "arena_connections_peak", "Most client connections open at once."},
+              c.connections_peak);
+    out.counter({"bytes_in", "arena_received_bytes_total", "Bytes read from clients."}, c.bytes_in);
+    out.counter({"bytes_out", "arena_sent_bytes_total", "Bytes written to clients."}, c.bytes_out);
+    out.counter({"messages_in", "arena_received_messages_total", "Protocol messages read from clients."},
+                c.messages_in);
+    out.counter({"messages_out", "arena_sent_messages_total", "Protocol messages written to clients."}, c.messages_out);
+}
+
+}  // namespace arena::ops
