@@ -132,7 +132,11 @@ void check_run(checked_run& run, link_kind kind, std::uint64_t ticks) {
     }
     auto errors = sim.shared().metrics().prediction_error_m;
     const bots::summary e = errors.summarize();
-    WARN("prediction error m: p50 " << e.p50 << " p99 " << e.p99 << " max " << e.max << "; overflows " << overflows
+    // Shown with a failure. Measured (seed 2024): over the stream p50 0.17 m, p99 6.6 m, max
+    // 32 m, with 87 000 inputs dropped from full buffers after retransmission stalls; over
+    // datagrams p50 0.057 m, p99 1.5 m, max 9.4 m, with 61 000 inputs stale (overtaken by a
+    // later one: ±20 ms of jitter on inputs 16.7 ms apart), of 384 000 sent.
+    INFO("prediction error m: p50 " << e.p50 << " p99 " << e.p99 << " max " << e.max << "; overflows " << overflows
                                     << " underruns " << underruns << " stale " << stale);
     CHECK(e.count > sim.size() * ticks / 3 * 8 / 10);
     CHECK(e.p50 < 0.5);
