@@ -14,10 +14,10 @@ namespace http = beast::http;
 using boost::asio::ip::tcp;
 
 // One connection: its stream, and its place in the queue of those still sending their head.
-struct connection {
-    explicit connection(tcp::socket socket) : stream(std::move(socket)) {}
+struct http_connection {
+    explicit http_connection(tcp::socket socket) : stream(std::move(socket)) {}
     beast::tcp_stream stream;
-    std::list<std::shared_ptr<connection>>::iterator waiting_at;
+    std::list<std::shared_ptr<http_connection>>::iterator waiting_at;
     bool waiting = false;  // in shared_state::waiting
     bool counted = true;   // in shared_state::open (an evicted connection no longer is)
 };
@@ -28,14 +28,14 @@ struct http_server::shared_state {
     uint64_t evicted = 0;
     // Connections still sending their request head, oldest first: the ones a new connection may
     // replace when all slots are taken, so that 32 idle sockets cannot keep a health probe out.
-    std::list<std::shared_ptr<connection>> waiting;
+    std::list<std::shared_ptr<http_connection>> waiting;
 
-    void stop_waiting(connection& c) {
+    void stop_waiting(http_connection& c) {
         if (!c.waiting) return;
         waiting.erase(c.waiting_at);
         c.waiting = false;
     }
-    void uncount(connection& c) {
+    void uncount(http_connection& c) {
         if (!c.counted) return;
         --open;
         c.counted = false;
@@ -153,7 +153,7 @@ http::response<http::string_body> to_beast(const http_response& r) {
 }
 
 boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> state, http_handlers handlers,
-                                   http_server_options options, std::shared_ptr<connection> conn) {
+                                   http_server_options options, std::shared_ptr<http_connection> conn) {
     ++state->open;
     conn->waiting_at = state->waiting.insert(state->waiting.end(), conn);
     conn->waiting = true;
@@ -235,7 +235,8 @@ boost::asio::awaitable<void> http_server::accept_loop() {
         // being answered, the new socket closes as it goes out of scope.
         if (state->open >= options_.max_connections && !state->evict_oldest()) continue;
         // Copies: the server may be destroyed while this connection is still being answered.
-        boost::asio::co_spawn(io_, serve(state, handlers_, options_, std::make_shared<connection>(std::move(socket))),
+        boost::asio::co_spawn(io_,
+                              serve(state, handlers_, options_, std::make_shared<http_connection>(std::move(socket))),
                               boost::asio::detached);
     }
 }

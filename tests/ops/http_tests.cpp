@@ -166,12 +166,13 @@ TEST_CASE("ops http: 40 idle connections do not lock /healthz out: the oldest id
     std::vector<int> idle;
     for (int i = 0; i < 40; ++i) idle.push_back(arena::test::open_idle_connection(f.server.port()));
     // Each of the last 8 took the slot of one of the first 8.
-    CHECK(arena::test::closed_by_peer(idle[0], std::chrono::milliseconds(1000)));
-    CHECK(arena::test::closed_by_peer(idle[7], std::chrono::milliseconds(1000)));
+    CHECK(arena::test::closed_by_peer(idle[0], std::chrono::milliseconds(3000)));
+    CHECK(arena::test::closed_by_peer(idle[7], std::chrono::milliseconds(3000)));
     for (int round = 0; round < 3; ++round) {
         const auto start = std::chrono::steady_clock::now();
         CHECK(status_of(http_get(f.server.port(), "/healthz")) == 200);
-        CHECK(std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1000));
+        // Far below the 10 s any deadline here would take: eviction made the room.
+        CHECK(std::chrono::steady_clock::now() - start < std::chrono::milliseconds(3000));
     }
     // The first probe took the oldest idle slot and gave it back when answered, so the next
     // ones found it free; the newest idle connections are still open.
