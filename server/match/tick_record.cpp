@@ -3,9 +3,8 @@
 namespace arena::match {
 
 std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record) {
-    std::vector<uint32_t> spawned;
-    spawned.reserve(record.joins.size());
-    for (uint32_t owner : record.joins) spawned.push_back(w.spawn_player(owner).value_or(0));
+    // In one batch: spawn_player one join at a time scans every body per try (quadratic).
+    std::vector<uint32_t> spawned = w.spawn_players(record.joins);
     for (uint32_t body_id : record.leaves) w.remove_body(body_id);
     w.step(record.inputs);
     return spawned;

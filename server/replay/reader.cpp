@@ -73,8 +73,18 @@ protocol::result<reader> reader::open(const std::string& path) {
                                        ": the physics differ, so the hashes could not match (replay it with the "
                                        "Arena version that recorded it)"));
     }
-    if (h->tick_rate == 0) return r::failure(rd.at(0, "Header: tick_rate is 0"));
-    if (h->hash_interval == 0) return r::failure(rd.at(0, "Header: hash_interval is 0"));
+    if (h->tick_rate == 0 || h->tick_rate > max_tick_rate)
+        return r::failure(rd.at(0, "Header: tick_rate " + std::to_string(h->tick_rate) + " is outside [1, " +
+                                       std::to_string(max_tick_rate) + "], the rates arena-server runs at"));
+    if (h->hash_interval == 0 || h->hash_interval > max_hash_interval)
+        return r::failure(rd.at(0, "Header: hash_interval " + std::to_string(h->hash_interval) + " is outside [1, " +
+                                       std::to_string(max_hash_interval) + "]"));
+    if (h->start_tick > max_start_tick(h->tick_rate))
+        return r::failure(rd.at(0, "Header: start_tick " + std::to_string(h->start_tick) + " is more than " +
+                                       std::to_string(max_start_seconds) + " s (" +
+                                       std::to_string(max_start_tick(h->tick_rate)) + " ticks at " +
+                                       std::to_string(h->tick_rate) +
+                                       " Hz) after the world's start: arena-server records from a match's first tick"));
     auto parsed = config::parse_config_json(h->world_config);
     if (auto* e = std::get_if<config::config_error>(&parsed)) {
         return r::failure(rd.at(0, "Header: world config: " + e->message));
@@ -166,6 +176,11 @@ protocol::result<entry> reader::check_order(record rec, uint64_t start) {
         if (t->tick != next_tick_) {
             return r::failure(at(start, "Tick record for tick " + std::to_string(t->tick) + " where tick " +
                                             std::to_string(next_tick_) + " was expected"));
+        }
+        if (t->joins.size() > max_joins_per_tick) {
+            return r::failure(at(start, "Tick record for tick " + std::to_string(t->tick) + " has " +
+                                            std::to_string(t->joins.size()) + " joins; a server admits at most " +
+                                            std::to_string(max_joins_per_tick) + " players"));
         }
         ++next_tick_;
         return success_as<entry>(std::move(*t));

@@ -5,6 +5,7 @@
 #include "server/world/forces.hpp"
 #include "server/world/hash.hpp"
 #include "server/world/integrate.hpp"
+#include "server/world/spawn_grid.hpp"
 
 namespace arena::world {
 
@@ -117,17 +118,34 @@ std::optional<uint32_t> world::add_body(body b) {
 }
 
 std::optional<uint32_t> world::spawn_player(uint32_t owner) {
-    if (bodies_.size() >= config_.max_bodies) return std::nullopt;
-    auto is_free = [this](const vec2& p, real radius) {
-        for (const body& other : bodies_) {
-            const real reach = other.radius + radius;
-            if (displacement(p, other.position, config_).squaredNorm() < reach * reach) return false;
+    const uint32_t id = spawn_players({&owner, 1})[0];
+    return id != 0 ? std::optional<uint32_t>(id) : std::nullopt;
+}
+
+std::vector<uint32_t> world::spawn_players(std::span<const uint32_t> owners) {
+    std::vector<uint32_t> ids;
+    ids.reserve(owners.size());
+    if (owners.empty()) return ids;
+    // One grid for every spawn of the batch: its cells are wider than any two radii together.
+    const real player_radius = config_.player.radius;
+    real widest = player_radius;
+    for (const body& b : bodies_) widest = std::max(widest, b.radius);
+    spawn_grid grid(config_, widest + player_radius, bodies_.size() + owners.size());
+    for (const body& b : bodies_) grid.add(b.position, b.radius);
+    for (const uint32_t owner : owners) {
+        if (bodies_.size() >= config_.max_bodies) {
+            ids.push_back(0);
+            continue;
         }
-        return true;
-    };
-    body b = make_body(config_.player, random_free_position(config_.player.radius, is_free));
-    b.owner = owner;
-    return add_body(b);
+        body b = make_body(config_.player, random_free_position(player_radius, [&grid](const vec2& p, real r) {
+                               return grid.is_free(p, r);
+                           }));
+        b.owner = owner;
+        const auto id = add_body(b);
+        if (id) grid.add(b.position, b.radius);
+        ids.push_back(id.value_or(0));
+    }
+    return ids;
 }
 
 bool world::remove_body(uint32_t id) {

@@ -28,6 +28,9 @@ public:
     std::optional<uint32_t> add_body(body b);
     // A player's body of the config's player material at a free spot drawn from the world's rng.
     std::optional<uint32_t> spawn_player(uint32_t owner);
+    // spawn_player for each owner in order, with the same results, in O(bodies + owners) tests
+    // rather than O(bodies × owners). Each entry is the body's id, or 0 when the world is full.
+    std::vector<uint32_t> spawn_players(std::span<const uint32_t> owners);
     bool remove_body(uint32_t id);
 
     body* find(uint32_t id);

@@ -1,0 +1,76 @@
+// Spawning many players: spawn_players (one grid for the batch) places every body exactly where
+// spawn_player one at a time does, and that is where it always did (hashes taken before the
+// grid existed, when each try scanned every body).
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <numeric>
+#include <vector>
+
+#include "server/world/presets.hpp"
+#include "server/world/world.hpp"
+
+using namespace arena::world;
+
+namespace {
+
+std::vector<uint32_t> owners(uint32_t n) {
+    std::vector<uint32_t> o(n);
+    std::iota(o.begin(), o.end(), 1u);
+    return o;
+}
+
+// Crowded on purpose: most late spawns find no free spot in 32 tries and take the last one.
+world_config small(world_config c, boundary b) {
+    c.boundary = b;
+    c.size = {100, 60};
+    return c;
+}
+
+uint64_t one_at_a_time(const world_config& c, uint32_t n) {
+    world w(c, 7);
+    for (uint32_t owner : owners(n)) REQUIRE(w.spawn_player(owner));
+    return w.hash();
+}
+
+uint64_t in_one_batch(const world_config& c, uint32_t n) {
+    world w(c, 7);
+    const auto ids = w.spawn_players(owners(n));
+    REQUIRE(ids.size() == n);
+    for (uint32_t id : ids) REQUIRE(id != 0);
+    return w.hash();
+}
+
+}  // namespace
+
+TEST_CASE("spawn_players places bodies exactly where spawn_player always did", "[world][spawn]") {
+    struct scene {
+        const char* name;
+        world_config config;
+        uint32_t players;
+        uint64_t hash;  // taken with the scan of every body per try, before spawn_grid
+    };
+    const world_config wrap = small(asteroids_preset(), boundary::wrap);
+    const world_config walls = small(platformer_preset(), boundary::walls);
+    const world_config open = small(asteroids_preset(), boundary::open);
+    const world_config floor = small(platformer_preset(), boundary::floor);
+    const scene scenes[] = {
+        {"asteroids, wrap", wrap, 300, 0x83077e1bf629cdbcu},    {"asteroids, wrap", wrap, 600, 0x31a749dcdd0ca0edu},
+        {"asteroids, wrap", wrap, 3000, 0x82bfb5f3cb536009u},   {"platformer, walls", walls, 300, 0x6fbed2f46f653240u},
+        {"platformer, walls", walls, 600, 0x23cd1f8593a60751u}, {"platformer, walls", walls, 3000, 0x2190d31200b411e8u},
+        {"asteroids, open", open, 600, 0x31a749dcdd0ca0edu},    {"platformer, floor", floor, 600, 0x23cd1f8593a60751u},
+    };
+    for (const scene& s : scenes) {
+        INFO(s.name << ", " << s.players << " players");
+        CHECK(one_at_a_time(s.config, s.players) == s.hash);
+        CHECK(in_one_batch(s.config, s.players) == s.hash);
+    }
+}
+
+TEST_CASE("spawn_players stops at max_bodies with 0 for the refused", "[world][spawn]") {
+    world_config c = asteroids_preset();
+    c.max_bodies = 45;  // 40 rocks, then 5 players
+    world w(c, 1);
+    const auto ids = w.spawn_players(owners(8));
+    CHECK(std::count(ids.begin(), ids.end(), 0u) == 3);
+    CHECK(w.bodies().size() == 45);
+}
