@@ -125,8 +125,16 @@ boost::asio::awaitable<void> server::tick_loop() {
     }
 }
 
+void server::read_sessions() {
+    reading_.clear();
+    for (auto& [id, s] : sessions_) reading_.push_back(s);
+    for (auto& s : reading_) s->read_available(read_buffer_);
+    reading_.clear();
+}
+
 void server::run_due_ticks() {
     const uint32_t due = clock_.advance(now_ns());
+    if (due > 0) read_sessions();
     for (uint32_t i = 0; i < due; ++i) {
         const int64_t begin = now_ns();
         match_.tick();

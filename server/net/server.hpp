@@ -2,6 +2,7 @@
 // The authoritative server: accepts TCP clients, runs the match at a fixed tick on one
 // io_context thread, fans snapshots out, and shuts down cleanly on a signal or at the end of
 // --duration.
+#include <array>
 #include <boost/asio.hpp>
 #include <cstdint>
 #include <functional>
@@ -83,6 +84,7 @@ private:
     boost::asio::awaitable<void> accept_loop();
     boost::asio::awaitable<void> tick_loop();
     void run_due_ticks();
+    void read_sessions();  // what every client sent since the last tick
     void check_stalled_sessions(int64_t now);
     void log_stats(int64_t now);
     void finish();
@@ -93,6 +95,8 @@ private:
     boost::asio::ip::tcp::acceptor acceptor_;
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
+    std::vector<std::shared_ptr<session>> reading_;          // read_sessions()' copy: reading may close one
+    std::array<uint8_t, 64 * 1024> read_buffer_{};           // one for every session: one thread reads
     uint64_t next_session_id_ = 1;
     tick_clock clock_;
     boost::asio::steady_timer tick_timer_;

@@ -33,58 +33,59 @@ void session::start() {
     boost::system::error_code ec;
     socket_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
     socket_.set_option(boost::asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
-    socket_.non_blocking(true, ec);  // the reader's read_some after async_wait must never block
+    socket_.non_blocking(true, ec);  // read_available must never block
     auto self = shared_from_this();
-    // Each coroutine's completion handler holds the session alive until the coroutine ends.
-    boost::asio::co_spawn(socket_.get_executor(), reader(), [self](std::exception_ptr) {});
+    // The writer's completion handler holds the session alive until it ends; the server holds
+    // it while it is open.
     boost::asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
 }
 
-boost::asio::awaitable<void> session::reader() {
-    try {
-        while (!closing_) {
-            // Wait until the socket is readable, then take whatever it holds, up to the buffer:
-            // one recv per input in the common case. Reading the length prefix and then the body
-            // took two, and a read attempted before waiting (async_read_some's first try) most
-            // often finds nothing and costs a third.
-            co_await socket_.async_wait(boost::asio::ip::tcp::socket::wait_read, use_awaitable);
-            boost::system::error_code ec;
-            const size_t n = socket_.read_some(boost::asio::buffer(input_), ec);
-            if (ec == boost::asio::error::would_block || ec == boost::asio::error::try_again) continue;
-            if (ec) throw boost::system::system_error(ec);
-            owner_.count_in(n);
-            std::span<const uint8_t> data(input_.data(), n);
-            while (!closing_) {
-                data = data.subspan(reader_.feed(data));
-                if (reader_.failed()) {
-                    match_.reject(*this, match::admission::unreadable(reader_));
-                    co_return;
-                }
-                if (!reader_.has_frame()) break;  // the rest of the frame is still on its way
-                auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-                if (!verified) {
-                    match_.reject(*this, match::admission::unverified(verified.error));
-                    co_return;
-                }
-                owner_.count_message_in();
-                const bool go_on = match_.receive(*this, *verified.value);
-                reader_.next();
-                if (!go_on) {
-                    close_after({});  // a Bye from the client; after a refusal this changes nothing
-                    co_return;
-                }
-            }
-        }
-    } catch (const boost::system::system_error& e) {
-        if (!closing_) {
+void session::read_available(std::span<uint8_t> buffer) {
+    // What is there, without waiting: the server calls this once per tick for every session,
+    // so one recv serves every input that arrived since the last tick (a client sends about one
+    // per tick), and no socket is armed in epoll per read. Asio's async_wait re-armed the socket
+    // with one epoll_ctl per input; the match consumes inputs only at ticks anyway.
+    while (!closing_) {
+        boost::system::error_code ec;
+        const size_t n = socket_.read_some(boost::asio::buffer(buffer.data(), buffer.size()), ec);
+        if (ec == boost::asio::error::would_block || ec == boost::asio::error::try_again) return;
+        if (ec) {
             using kind = match::close_cause::kind;
-            const bool eof = e.code() == boost::asio::error::eof;
+            const bool eof = ec == boost::asio::error::eof;
             const kind what =
                 !eof ? kind::socket_error : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
-            match_.disconnect(*this, {what, {}, eof ? std::string() : e.code().message()});
+            match_.disconnect(*this, {what, {}, eof ? std::string() : ec.message()});
             close_now();
+            return;
+        }
+        owner_.count_in(n);
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), n))) return;
+        if (n < buffer.size()) return;  // the socket is drained: the next recv would find nothing
+    }
+}
+
+bool session::take_frames(std::span<const uint8_t> data) {
+    while (!closing_) {
+        data = data.subspan(reader_.feed(data));
+        if (reader_.failed()) {
+            match_.reject(*this, match::admission::unreadable(reader_));
+            return false;
+        }
+        if (!reader_.has_frame()) return true;  // the rest of the frame is still on its way
+        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
+        if (!verified) {
+            match_.reject(*this, match::admission::unverified(verified.error));
+            return false;
+        }
+        owner_.count_message_in();
+        const bool go_on = match_.receive(*this, *verified.value);
+        reader_.next();
+        if (!go_on) {
+            close_after({});  // a Bye from the client; after a refusal this changes nothing
+            return false;
         }
     }
+    return false;
 }
 
 boost::asio::awaitable<void> session::writer() {

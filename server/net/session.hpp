@@ -1,6 +1,6 @@
 #pragma once
-// One TCP client: a reader coroutine that frames, verifies and dispatches its messages, and a
-// writer coroutine, the only one that writes to the socket. Output is bounded: control
+// One TCP client: read once per tick (read_available: frames, verifies, hands each message to
+// the match), and a writer coroutine, the only one that writes to the socket. Output is bounded: control
 // messages queue up to a limit, and a snapshot waiting to be sent is replaced by a newer one,
 // so a client that does not read costs at most one snapshot and a few small frames.
 #include <array>
@@ -23,6 +23,9 @@ public:
     session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id);
 
     void start();
+    // Reads what the socket holds now into `buffer` (shared: one thread) and hands every
+    // complete frame to the match; never waits. The server calls it once per tick.
+    void read_available(std::span<uint8_t> buffer);
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
     void send_snapshot_frame(std::span<const uint8_t> frame) override;
@@ -37,7 +40,8 @@ public:
     bool closing() const { return closing_; }
 
 private:
-    boost::asio::awaitable<void> reader();
+    // Frames `data` and hands each verified message to the match; false: stop reading.
+    bool take_frames(std::span<const uint8_t> data);
     boost::asio::awaitable<void> writer();
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
@@ -49,7 +53,6 @@ private:
     uint64_t id_;
     std::string peer_;
     protocol::frame_reader reader_;
-    std::array<uint8_t, 1024> input_{};          // bytes read from the socket, fed to reader_
     std::deque<protocol::frame_bytes> control_;  // in order, bounded
     std::vector<uint8_t> snapshot_next_;         // newest snapshot not yet being written
     std::vector<uint8_t> snapshot_writing_;
