@@ -148,6 +148,13 @@ std::vector<uint32_t> world::spawn_players(std::span<const uint32_t> owners) {
     return ids;
 }
 
+void world::remove_bodies(std::span<const uint32_t> ids) {
+    if (ids.empty()) return;
+    std::vector<uint32_t> sorted(ids.begin(), ids.end());
+    std::sort(sorted.begin(), sorted.end());
+    std::erase_if(bodies_, [&sorted](const body& b) { return std::binary_search(sorted.begin(), sorted.end(), b.id); });
+}
+
 bool world::remove_body(uint32_t id) {
     auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id, less_by_id);
     if (at == bodies_.end() || at->id != id) return false;

@@ -32,6 +32,9 @@ public:
     // rather than O(bodies × owners). Each entry is the body's id, or 0 when the world is full.
     std::vector<uint32_t> spawn_players(std::span<const uint32_t> owners);
     bool remove_body(uint32_t id);
+    // remove_body for each id (unknown ids ignored), with the same result, in one pass over the
+    // bodies: one erase per id moved the tail each time (quadratic for a tick of many leaves).
+    void remove_bodies(std::span<const uint32_t> ids);
 
     body* find(uint32_t id);
     const body* find(uint32_t id) const;

@@ -74,3 +74,15 @@ TEST_CASE("spawn_players stops at max_bodies with 0 for the refused", "[world][s
     CHECK(std::count(ids.begin(), ids.end(), 0u) == 3);
     CHECK(w.bodies().size() == 45);
 }
+
+TEST_CASE("remove_bodies leaves the world remove_body one at a time leaves", "[world][spawn]") {
+    world a(asteroids_preset(), 3), b(asteroids_preset(), 3);
+    a.spawn_players(owners(200));
+    b.spawn_players(owners(200));
+    // Unknown ids, repeats and any order, as a recorded tick's leaves may hold them.
+    const std::vector<uint32_t> leaves{45, 7, 45, 239, 100000, 41, 1, 200, 0};
+    for (uint32_t id : leaves) a.remove_body(id);
+    b.remove_bodies(leaves);
+    CHECK(b.bodies().size() == 240 - 6);
+    CHECK(a.hash() == b.hash());
+}
