@@ -57,4 +57,26 @@ std::optional<std::string> player_name_problem(std::string_view name, std::size_
     return std::nullopt;
 }
 
+std::string printable_text(std::string_view text, std::size_t max_bytes) {
+    const bool cut = text.size() > max_bytes;
+    if (cut) text = text.substr(0, max_bytes);
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t at = 0; at < text.size();) {
+        std::uint32_t code_point = 0;
+        const std::size_t length = utf8_sequence(text, at, code_point);
+        if (length == 0 || code_point < 0x20 || (code_point >= 0x7f && code_point <= 0x9f)) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<std::uint8_t>(text[at]));
+            out += escaped;
+            ++at;  // byte by byte: the rest of a broken sequence is judged on its own
+            continue;
+        }
+        out.append(text.substr(at, length));
+        at += length;
+    }
+    if (cut) out += "...";
+    return out;
+}
+
 }  // namespace arena::protocol

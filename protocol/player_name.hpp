@@ -21,4 +21,10 @@ inline constexpr std::size_t max_player_name_bytes = 64;
 [[nodiscard]] std::optional<std::string> player_name_problem(std::string_view name,
                                                              std::size_t max_bytes = max_player_name_bytes);
 
+// `text` as a log line, a metric label or another client may show it: every byte that is not
+// part of well-formed UTF-8 without control characters is written as \xNN (a newline cannot
+// forge a line, a NUL cannot cut one short), and at most `max_bytes` of the input are kept
+// ("..." marks the cut). For text a client chose that is not refused outright (a Bye reason).
+[[nodiscard]] std::string printable_text(std::string_view text, std::size_t max_bytes = 256);
+
 }  // namespace arena::protocol

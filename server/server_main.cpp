@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     CLI::App app{"arena-server: the authoritative Arena game server", "arena-server"};
     net::server_options options;
     std::string preset = "asteroids", config_file, record;
-    double handshake_s = 5, stall_s = 5;
+    double handshake_s = 5, stall_s = 5, idle_s = 5;
     app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
     app.add_option("--port", options.port, "TCP port (default 7777; 0 picks a free one)");
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
                    "inputs per second before a client is dropped (default 2 x tick rate + 10)");
     app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
+    app.add_option("--idle-timeout", idle_s,
+                   "seconds a joined client may go without sending an Input before it is dropped (default 5; 0: never)")
+        ->check(cli::finite_non_negative);
     app.add_option("--stall-timeout", stall_s, "seconds a client may block our writes before it is dropped (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
     app.add_option("--socket-send-buffer", options.socket_send_buffer,
@@ -54,7 +57,8 @@ int main(int argc, char** argv) {
     app.add_option("--max-connections", options.max_connections,
                    "open connections at once (default 2 x max players + 16)");
     app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
-                   "connections that have not sent Hello yet (default 64)");
+                   "connections that have not sent Hello yet; when all are taken a new one takes the slot of the "
+                   "oldest from the busiest address (default 0: max players + 16, at least 64)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
     uint32_t hash_interval = 60;
@@ -84,6 +88,13 @@ int main(int argc, char** argv) {
         ->check(cli::finite_non_negative);
     cli::bound_server_flags(app);  // upper bounds: no seconds overflow into the past
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    // The Welcome tells clients the snapshot rate: it must be the one they get, a whole number
+    // of ticks apart (asking for 50 at 60 Hz used to give 60, and 7 gave 7.5).
+    if (options.match.tick_rate % options.match.snapshot_rate != 0) {
+        std::fprintf(stderr, "arena-server: --snapshot-rate: %u does not divide the tick rate %u\n",
+                     options.match.snapshot_rate, options.match.tick_rate);
+        return 2;
+    }
     std::signal(SIGPIPE, SIG_IGN);  // a log reader that went away (`| head`) must not kill the match
     if (auto error = ops::apply_agones_environment(ops_options, std::getenv("AGONES_SDK_HTTP_PORT")); !error.empty()) {
         std::fprintf(stderr, "arena-server: %s\n", error.c_str());
@@ -101,6 +112,7 @@ int main(int argc, char** argv) {
     }
     options.handshake_timeout_ns = static_cast<int64_t>(handshake_s * 1e9);
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
+    options.idle_timeout_ns = static_cast<int64_t>(idle_s * 1e9);
 
     world::world_config world_config;
     if (!config_file.empty()) {

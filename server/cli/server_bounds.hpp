@@ -9,6 +9,7 @@ namespace arena::cli {
 
 inline constexpr number_bound handshake_timeout_bound{0, 3600, true, "s"};
 inline constexpr number_bound stall_timeout_bound{0, 3600, true, "s"};
+inline constexpr number_bound idle_timeout_bound{0, 3600, false, "s"};  // 0: never
 inline constexpr number_bound stats_interval_bound{0, 86400, true, "s"};
 // 30 days: 2.6e9 ticks at 1000 Hz still fit the world's 32-bit tick counter. 0: until a signal.
 inline constexpr number_bound duration_bound{0, 30 * 86400, false, "s"};
@@ -22,6 +23,7 @@ inline constexpr number_bound agones_shutdown_timeout_bound{0, 3600, true, "s"};
 inline void bound_server_flags(CLI::App& app) {
     bound_option(app, "--handshake-timeout", handshake_timeout_bound);
     bound_option(app, "--stall-timeout", stall_timeout_bound);
+    bound_option(app, "--idle-timeout", idle_timeout_bound);
     bound_option(app, "--stats-interval", stats_interval_bound);
     bound_option(app, "--duration", duration_bound);
     bound_option(app, "--reconnect-grace", reconnect_grace_bound);

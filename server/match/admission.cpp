@@ -1,5 +1,8 @@
 #include "server/match/admission.hpp"
 
+#include <algorithm>
+
+#include "protocol/player_name.hpp"
 #include "protocol/version.hpp"
 
 namespace arena::match {
@@ -18,11 +21,25 @@ uint32_t admission::connection_limit() const {
     return limits_.max_connections ? limits_.max_connections : 2 * limits_.max_players + 16;
 }
 
-std::optional<rejection> admission::admit_connection(size_t open, size_t awaiting_hello) const {
-    if (open > connection_limit()) return rejection{RejectCode::server_full, "too many connections"};
-    if (awaiting_hello > limits_.max_pending_handshakes)
-        return rejection{RejectCode::server_full, "too many connections waiting to say Hello"};
-    return std::nullopt;
+uint32_t admission::pending_limit() const {
+    if (limits_.max_pending_handshakes) return limits_.max_pending_handshakes;
+    return std::max<uint32_t>(64, limits_.max_players + 16);
+}
+
+std::variant<admission::connection_verdict, rejection> admission::admit_connection(size_t open,
+                                                                                   size_t awaiting_hello) const {
+    // The others waiting (this one excluded) are what could make room.
+    const size_t others_waiting = awaiting_hello - 1;
+    if (open > connection_limit()) {
+        if (others_waiting == 0) return rejection{RejectCode::server_full, "too many connections"};
+        return connection_verdict::make_room;
+    }
+    if (awaiting_hello > pending_limit() && others_waiting > 0) return connection_verdict::make_room;
+    return connection_verdict::admit;
+}
+
+rejection admission::waiting_evicted() {
+    return {RejectCode::too_many_waiting, "too many connections waiting to say Hello; a newer one took this slot"};
 }
 
 rejection admission::unreadable(const protocol::frame_reader& reader) {
@@ -56,8 +73,9 @@ admitted_message admission::admit_message(const client_standing& client, const p
             return ping_message{ping.value.client_time};
         }
         case Payload::Bye: {
+            // The reason goes to the log as it is shown: escaped, so that it cannot forge a line.
             auto bye = protocol::decode_bye(message);
-            return bye_message{bye ? bye.value.reason : std::string("(unreadable)")};
+            return bye_message{bye ? protocol::printable_text(bye.value.reason) : std::string("(unreadable)")};
         }
         default:
             return rejection{
@@ -72,43 +90,57 @@ std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::h
         return rejection{RejectCode::version_mismatch, "protocol version " + std::to_string(hello.protocol_version) +
                                                            " is not supported; this server speaks " +
                                                            std::to_string(protocol::protocol_version)};
-    if (hello.name.size() > limits_.max_name_bytes)
-        return rejection{RejectCode::bad_request,
-                         "name longer than " + std::to_string(limits_.max_name_bytes) + " bytes"};
+    // The one name rule (protocol/player_name.hpp): a name reaches log lines and other clients.
+    if (auto problem = protocol::player_name_problem(hello.name, limits_.max_name_bytes))
+        return rejection{RejectCode::bad_request, std::move(*problem)};
     if (hello.token.size() > limits_.max_token_bytes)
         return rejection{RejectCode::bad_request,
                          "token longer than " + std::to_string(limits_.max_token_bytes) + " bytes"};
     if (!check_token_) return admitted_hello{hello.name, hello.token};  // open: the token is the client's own key
     token_verdict verdict = check_token_(hello.token);
     if (!verdict.name) return rejection{RejectCode::unauthorized, std::move(verdict.problem)};
+    if (auto problem = protocol::player_name_problem(*verdict.name, limits_.max_name_bytes))
+        return rejection{RejectCode::unauthorized, "the token's " + *problem};
     // The signed name is the player's identity, whatever name the Hello claims.
     return admitted_hello{*verdict.name, "signed:" + *verdict.name};
 }
 
 std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> same_identity_connected,
-                                                         size_t players) const {
+                                                         size_t live_players) const {
     if (same_identity_connected) return *same_identity_connected ? join_kind::takeover : join_kind::reconnect;
-    if (players >= limits_.max_players)
+    if (live_players >= limits_.max_players)
         return rejection{RejectCode::server_full, "server full (" + std::to_string(limits_.max_players) + " players)"};
     return join_kind::new_player;
 }
 
 std::variant<admitted_input, rejection> admission::admit_input(client_standing& client,
-                                                               const protocol::input_msg& input) const {
-    if (++client.inputs_this_second > input_limit())
+                                                               const protocol::input_msg& input, int64_t arrival_ns,
+                                                               uint32_t tick) const {
+    const double rate = input_limit();
+    if (!client.inputs.take(arrival_ns, rate, std::max(1.0, rate * limits_.input_burst_s)))
         return rejection{RejectCode::rate_limit, "more than " + std::to_string(input_limit()) + " inputs per second"};
     const world::player_input in{input.thrust, input.turn, input.buttons};
     if (auto problem = world::check_input(in)) return rejection{RejectCode::bad_input, *problem};
+    client.last_input_tick = tick;
     if (input.sequence <= client.last_sequence) return admitted_input{true, {}};
     client.last_sequence = input.sequence;
     return admitted_input{false, in};
 }
 
-std::optional<rejection> admission::check_on_tick(client_standing& client, uint32_t tick) const {
-    if (tick % limits_.tick_rate == 0) client.inputs_this_second = 0;  // the rate is counted per second of ticks
+std::optional<rejection> admission::admit_ping(client_standing& client, int64_t arrival_ns) const {
+    if (client.pings.take(arrival_ns, limits_.max_pings_per_second, std::max<uint32_t>(1, limits_.ping_burst)))
+        return std::nullopt;
+    return rejection{RejectCode::ping_limit, "more than " + std::to_string(limits_.ping_burst) + " Pings at once or " +
+                                                 std::to_string(limits_.max_pings_per_second) + " per second"};
+}
+
+std::optional<rejection> admission::check_on_tick(const client_standing& client, uint32_t tick) const {
     if (client.at == client_standing::stage::awaiting_hello &&
         tick - client.connected_tick >= limits_.handshake_timeout_ticks)
         return rejection{RejectCode::timeout, "no Hello within the handshake timeout"};
+    if (client.at == client_standing::stage::joined && limits_.idle_timeout_ticks != 0 &&
+        tick - client.last_input_tick >= limits_.idle_timeout_ticks)
+        return rejection{RejectCode::timeout, "no Input within the idle timeout"};
     return std::nullopt;
 }
 

@@ -20,19 +20,26 @@
 #include "protocol/decode.hpp"
 #include "protocol/framing.hpp"
 #include "server/match/close_cause.hpp"
+#include "server/match/token_bucket.hpp"
 #include "server/world/input.hpp"
 
 namespace arena::match {
 
 struct admission_limits {
-    uint16_t tick_rate = 60;                 // ticks per second: rates are counted per second of ticks
+    uint16_t tick_rate = 60;                 // ticks per second: time-outs are counted in ticks
     uint32_t max_players = 64;               // players at once
     uint32_t max_connections = 0;            // open connections at once; 0: 2 × max_players + 16
-    uint32_t max_pending_handshakes = 64;    // connections that have not sent Hello yet
+    uint32_t max_pending_handshakes = 0;     // connections that have not sent Hello yet; 0: see pending_limit()
     uint32_t handshake_timeout_ticks = 300;  // ticks a new connection has to send Hello (5 s at 60 Hz)
+    uint32_t idle_timeout_ticks = 300;       // ticks a joined client may go without an Input; 0: never
     uint32_t max_name_bytes = 64;            // Hello.name, bytes
     uint32_t max_token_bytes = 1024;         // Hello.token, bytes
     uint32_t max_inputs_per_second = 0;      // 0: 2 × tick_rate + 10
+    // Seconds of inputs at the limit a client may send at once: what the kernel holds after the
+    // server (or the network) stood still this long arrives together and must not be refused.
+    double input_burst_s = 5;
+    uint32_t max_pings_per_second = 5;  // a client pings about once a second
+    uint32_t ping_burst = 20;           // Pings at once
 };
 
 // What a signed token says: the name it was minted for, or why it is refused. Checking a
@@ -48,9 +55,11 @@ using token_check = std::function<token_verdict(std::string_view token)>;
 struct client_standing {
     enum class stage : uint8_t { awaiting_hello, joined };
     stage at = stage::awaiting_hello;
-    uint32_t connected_tick = 0;      // the world's tick when the connection was handed over
-    uint32_t last_sequence = 0;       // newest Input.sequence taken; older ones are stale
-    uint32_t inputs_this_second = 0;  // inputs in the current second of ticks
+    uint32_t connected_tick = 0;   // the world's tick when the connection was handed over
+    uint32_t last_input_tick = 0;  // the tick of the last Input (or of the Hello): idle since
+    uint32_t last_sequence = 0;    // newest Input.sequence taken; older ones are stale
+    token_bucket inputs;           // the input rate, in the transport's arrival times
+    token_bucket pings;            // the Ping rate, likewise
 };
 
 // A message that passed the order and decoding rules, as its typed content.
@@ -92,8 +101,16 @@ public:
     explicit admission(const admission_limits& limits, token_check check_token = {});
 
     // A new connection, when `open` are open (this one included) and `awaiting_hello` of
-    // them (this one included) have not said Hello.
-    [[nodiscard]] std::optional<rejection> admit_connection(size_t open, size_t awaiting_hello) const;
+    // them (this one included) have not said Hello. A new connection always gets in while the
+    // server has room for players: when the handshake slots (or the connections) are all taken,
+    // the verdict is that one waiting connection gives its slot up (make_room); the match picks
+    // the oldest of the source address that holds the most (so one address cannot push the
+    // others out) and closes it with waiting_evicted(). Only a server whose connections are all
+    // players refuses, as server_full.
+    enum class connection_verdict : uint8_t { admit, make_room };
+    [[nodiscard]] std::variant<connection_verdict, rejection> admit_connection(size_t open,
+                                                                               size_t awaiting_hello) const;
+    [[nodiscard]] static rejection waiting_evicted();
     // Bytes a transport could not frame, or a frame that failed verification.
     [[nodiscard]] static rejection unreadable(const protocol::frame_reader& reader);
     [[nodiscard]] static rejection unverified(std::string_view error);
@@ -105,19 +122,30 @@ public:
     [[nodiscard]] std::variant<admitted_hello, rejection> admit_hello(const protocol::hello_msg& hello,
                                                                       bool draining) const;
     // Whether the player may join: `same_identity_connected` is unset when no player holds the
-    // identity, else whether that player is still connected.
+    // identity, else whether that player is still connected. `live_players` counts the players
+    // with a connection: bodies waiting in the reconnect grace do not keep a new player out
+    // (the match gives the oldest of them up to make room).
     [[nodiscard]] std::variant<join_kind, rejection> admit_join(std::optional<bool> same_identity_connected,
-                                                                size_t players) const;
-    // An Input from a joined client: the rate, finite numbers, and the sequence order.
-    // Updates `client` (the rate count, the last sequence) when it passes.
+                                                                size_t live_players) const;
+    // An Input from a joined client that arrived at `arrival_ns` (the transport's clock, in
+    // nanoseconds): the rate, finite numbers, and the sequence order. Updates `client` (the
+    // rate bucket, the last sequence, the idle time) when it passes.
     [[nodiscard]] std::variant<admitted_input, rejection> admit_input(client_standing& client,
-                                                                      const protocol::input_msg& input) const;
+                                                                      const protocol::input_msg& input,
+                                                                      int64_t arrival_ns, uint32_t tick) const;
+    // A Ping from a joined client at `arrival_ns`: within the ping rate, or refused (ping_limit)
+    // before its Pongs could fill the connection's output.
+    [[nodiscard]] std::optional<rejection> admit_ping(client_standing& client, int64_t arrival_ns) const;
     // Once per tick, after the step, for each client: what time alone refuses (a Hello that
-    // never came). Also starts each second's rate count.
-    [[nodiscard]] std::optional<rejection> check_on_tick(client_standing& client, uint32_t tick) const;
+    // never came, a joined client that stopped sending Inputs).
+    [[nodiscard]] std::optional<rejection> check_on_tick(const client_standing& client, uint32_t tick) const;
 
     [[nodiscard]] uint32_t input_limit() const;
     [[nodiscard]] uint32_t connection_limit() const;
+    // Connections waiting to say Hello at once: max_pending_handshakes, or when 0 enough for
+    // every free player slot to fill at once (max_players + 16, at least 64): 200 bots that
+    // connect together to a 256-player server all get in.
+    [[nodiscard]] uint32_t pending_limit() const;
     [[nodiscard]] const admission_limits& limits() const { return limits_; }
 
 private:

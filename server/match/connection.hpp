@@ -29,6 +29,13 @@ public:
     virtual void close_with_bye(std::string_view reason) = 0;
     // The peer's address as the logs show it ("127.0.0.1:52814"; "" when unknown).
     virtual std::string_view peer() const = 0;
+    // The peer's address without its port ("127.0.0.1", "::1"): handshake slots are shared
+    // fairly between addresses. By default peer() up to its last ':'.
+    virtual std::string_view address() const {
+        const std::string_view p = peer();
+        const size_t colon = p.rfind(':');
+        return colon == std::string_view::npos ? p : p.substr(0, colon);
+    }
 };
 
 }  // namespace arena::match

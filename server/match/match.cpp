@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "protocol/config_hash.hpp"
 #include "server/config/config_json.hpp"
@@ -21,6 +22,9 @@ admission_limits limits_of(const match_config& c) {
     l.max_pending_handshakes = c.max_pending_handshakes;
     l.handshake_timeout_ticks =
         std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(c.handshake_timeout_s * c.tick_rate)));
+    l.idle_timeout_ticks =
+        c.idle_timeout_s <= 0 ? 0
+                              : std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(c.idle_timeout_s * c.tick_rate)));
     l.max_name_bytes = c.max_name_bytes;
     l.max_token_bytes = c.max_token_bytes;
     l.max_inputs_per_second = c.max_inputs_per_second;
@@ -36,7 +40,12 @@ match::match(const match_config& config, const world::world_config& world_config
       world_(world_config, config.seed),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
-      fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {}
+      fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {
+    // The Welcome tells clients the snapshot rate; it must be the rate they get.
+    if (config.tick_rate == 0 || config.snapshot_rate == 0 || config.tick_rate % config.snapshot_rate != 0)
+        throw std::invalid_argument("snapshot rate " + std::to_string(config.snapshot_rate) +
+                                    " does not divide the tick rate " + std::to_string(config.tick_rate));
+}
 
 uint32_t match::snapshot_interval() const {
     return std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
@@ -50,18 +59,48 @@ uint32_t match::player_of(const connection& c) const {
 bool match::connect(connection& c) {
     client cl;
     cl.serial = next_serial_++;
+    cl.address = std::string(c.address());
     cl.standing.connected_tick = world_.tick();
     auto [it, inserted] = clients_.emplace(&c, cl);
     if (!inserted) return true;  // already known: a transport bug, but harmless
     ++awaiting_hello_;
-    if (auto no = admission_.admit_connection(clients_.size(), awaiting_hello_)) {
+    auto verdict = admission_.admit_connection(clients_.size(), awaiting_hello_);
+    if (auto* no = std::get_if<rejection>(&verdict)) {
         reject(c, *no);
         return false;
+    }
+    if (std::get<admission::connection_verdict>(verdict) == admission::connection_verdict::make_room) {
+        if (connection* evicted = oldest_waiting_of_busiest_address(&c)) reject(*evicted, admission::waiting_evicted());
     }
     return true;
 }
 
+connection* match::oldest_waiting_of_busiest_address(const connection* newcomer) const {
+    std::unordered_map<std::string_view, size_t> waiting;  // by address
+    for (const auto& [c, cl] : clients_)
+        if (cl.standing.at == client_standing::stage::awaiting_hello) ++waiting[cl.address];
+    const client* chosen = nullptr;
+    const connection* chosen_connection = nullptr;
+    size_t chosen_count = 0;
+    for (const auto& [c, cl] : clients_) {
+        if (c == newcomer || cl.standing.at != client_standing::stage::awaiting_hello) continue;
+        const size_t count = waiting[cl.address];
+        // The busiest address first, then the oldest connection: a fixed choice (serials are unique).
+        if (!chosen || count > chosen_count || (count == chosen_count && cl.serial < chosen->serial)) {
+            chosen = &cl;
+            chosen_connection = c;
+            chosen_count = count;
+        }
+    }
+    return const_cast<connection*>(chosen_connection);
+}
+
 bool match::receive(connection& c, const protocol::Message& message) {
+    const int64_t tick_ns = 1'000'000'000LL / std::max<uint16_t>(1, config_.tick_rate);
+    return receive(c, message, static_cast<int64_t>(world_.tick()) * tick_ns);
+}
+
+bool match::receive(connection& c, const protocol::Message& message, int64_t arrival_ns) {
     auto it = clients_.find(&c);
     if (it == clients_.end()) return false;  // bytes that were on their way when it was closed
     client& cl = it->second;
@@ -71,8 +110,12 @@ bool match::receive(connection& c, const protocol::Message& message) {
         return false;
     }
     if (auto* m = std::get_if<hello_message>(&admitted)) return on_hello(c, cl, m->hello);
-    if (auto* m = std::get_if<input_message>(&admitted)) return on_input(c, cl, m->input);
+    if (auto* m = std::get_if<input_message>(&admitted)) return on_input(c, cl, m->input, arrival_ns);
     if (auto* m = std::get_if<ping_message>(&admitted)) {
+        if (auto no = admission_.admit_ping(cl.standing, arrival_ns)) {
+            reject(c, *no);
+            return false;
+        }
         c.send(protocol::encode_pong(m->client_time, world_.tick()));
         return true;
     }
@@ -90,13 +133,14 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
     const std::optional<bool> same_connected =
         same == players_.end() ? std::nullopt : std::optional<bool>(same->second.who != nullptr);
-    auto verdict = admission_.admit_join(same_connected, players_.size());
+    auto verdict = admission_.admit_join(same_connected, live_player_count());
     if (auto* no = std::get_if<rejection>(&verdict)) {
         reject(c, *no);
         return false;
     }
     uint32_t id = 0;
     if (std::get<join_kind>(verdict) == join_kind::new_player) {
+        if (players_.size() >= config_.max_players) give_up_oldest_in_grace();
         id = next_player_id_++;
         players_.emplace(id, player{&c, admitted.name, admitted.identity, 0, 0, input_buffer(config_.input_buffer),
                                     snapshot_client(baseline_ring(), hello.delta_snapshots)});
@@ -122,17 +166,35 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     }
     cl.player_id = id;
     cl.standing.at = client_standing::stage::joined;  // a new connection numbers its inputs from 1 again
+    cl.standing.last_input_tick = world_.tick();      // the idle timeout starts now
     --awaiting_hello_;
     const std::string_view peer = c.peer();
-    log_("hello player=%u name=%s from %.*s", id, hello.name.c_str(), static_cast<int>(peer.size()), peer.data());
+    // The admitted name: the signed one with a token secret, never merely the claimed one.
+    log_("hello player=%u name=%s from %.*s", id, players_.at(id).name.c_str(), static_cast<int>(peer.size()),
+         peer.data());
     return true;
 }
 
-bool match::on_input(connection& c, client& cl, const protocol::input_msg& input) {
+void match::give_up_oldest_in_grace() {
+    auto oldest = players_.end();
+    for (auto it = players_.begin(); it != players_.end(); ++it) {
+        if (it->second.who) continue;
+        if (oldest == players_.end() || it->second.disconnected_at_tick < oldest->second.disconnected_at_tick)
+            oldest = it;  // ties: the lowest player id, the map's order
+    }
+    if (oldest != players_.end()) remove_player(oldest, "reconnect grace given up: a new player needed the slot");
+}
+
+size_t match::players_in_grace() const {
+    return static_cast<size_t>(
+        std::count_if(players_.begin(), players_.end(), [](const auto& p) { return p.second.who == nullptr; }));
+}
+
+bool match::on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns) {
     auto it = players_.find(cl.player_id);
     if (it == players_.end()) return true;
     ++counters_.inputs_received;
-    auto admitted = admission_.admit_input(cl.standing, input);
+    auto admitted = admission_.admit_input(cl.standing, input, arrival_ns, world_.tick());
     if (auto* no = std::get_if<rejection>(&admitted)) {
         reject(c, *no);
         return false;
@@ -246,11 +308,14 @@ void match::tick() {
     const std::vector<uint32_t> spawned = apply_tick(world_, record);
     if (on_tick) on_tick(record, world_.hash());
     spawn_pending(record.joins, spawned);
-    for (uint32_t id : pending_welcomes_) {
+    // Taken out of the list first: a send may end a connection (a Reject while sending), whose
+    // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the
+    // list itself then skipped a reconnected player's Welcome.
+    const std::vector<uint32_t> welcomes = std::exchange(pending_welcomes_, {});
+    for (uint32_t id : welcomes) {
         auto it = players_.find(id);
         if (it != players_.end() && it->second.who) send_welcome(id, it->second);
     }
-    pending_welcomes_.clear();
 
     check_clients();
     send_snapshots();
@@ -310,28 +375,35 @@ void match::send_snapshots() {
     const uint32_t interval = snapshot_interval();
     const uint32_t phase = world_.tick() % interval;
     fanout_.begin(world_);
-    for (auto& [id, p] : players_) {
-        if (p.body_id == 0 || !p.who) continue;
-        if ((p.snapshots.delta ? id % interval : 0) != phase) continue;
-        const uint32_t ack = p.inputs.last_consumed_sequence();
-        ++counters_.snapshots_sent;
-        if (!p.snapshots.delta && fanout_.shared_full_frame()) {
-            const protocol::snapshot_encoder& shared = fanout_.shared_frame();
-            counters_.snapshot_bytes = shared.frame().size();
-            p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
-            continue;
-        }
-        const auto frame =
-            p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack) : fanout_.full_frame(p.body_id, ack);
-        counters_.snapshot_bytes = frame.size();
-        p.who->send_snapshot_frame(frame);
+    // By id rather than by iterator: a send may end a connection, and with it a player.
+    for (auto it = players_.begin(); it != players_.end();) {
+        const uint32_t id = it->first;
+        player& p = it->second;
+        if (p.body_id != 0 && p.who && (p.snapshots.delta ? id % interval : 0) == phase) send_snapshot(p);
+        it = players_.upper_bound(id);
     }
+}
+
+void match::send_snapshot(player& p) {
+    const uint32_t ack = p.inputs.last_consumed_sequence();
+    ++counters_.snapshots_sent;
+    if (!p.snapshots.delta && fanout_.shared_full_frame()) {
+        const protocol::snapshot_encoder& shared = fanout_.shared_frame();
+        counters_.snapshot_bytes = shared.frame().size();
+        p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
+        return;
+    }
+    const auto frame =
+        p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack) : fanout_.full_frame(p.body_id, ack);
+    counters_.snapshot_bytes = frame.size();
+    p.who->send_snapshot_frame(frame);
 }
 
 match_counters match::counters() const {
     match_counters total = counters_;
     total.ticks = world_.tick();
-    total.players = players_.size();
+    total.players = live_player_count();  // live connections only: bodies in the grace are counted apart
+    total.players_in_grace = players_in_grace();
     total.max_players = config_.max_players;
     total.snapshots = fanout_.counters();
     for (const auto& [id, p] : players_) {

@@ -32,16 +32,17 @@ namespace arena::match {
 
 struct match_config {
     uint16_t tick_rate = 60;      // ticks per second
-    uint16_t snapshot_rate = 20;  // snapshots per second (a divisor of tick_rate works best)
+    uint16_t snapshot_rate = 20;  // snapshots per second: a divisor of tick_rate (the Welcome tells it)
     uint32_t max_players = 64;
-    uint32_t input_buffer = 8;             // inputs waiting per player; more drop the oldest
-    uint32_t max_inputs_per_second = 0;    // 0: 2 × tick_rate + 10
-    uint32_t max_name_bytes = 64;          // Hello.name, bytes
-    uint32_t max_token_bytes = 1024;       // Hello.token, bytes
-    uint32_t max_connections = 0;          // open connections at once; 0: 2 × max_players + 16
-    uint32_t max_pending_handshakes = 64;  // connections that have not sent Hello yet
-    double handshake_timeout_s = 5;        // s a new connection has to send Hello (counted in ticks)
-    std::string preset;                    // name sent in Welcome ("" for a config file)
+    uint32_t input_buffer = 8;            // inputs waiting per player; more drop the oldest
+    uint32_t max_inputs_per_second = 0;   // 0: 2 × tick_rate + 10
+    uint32_t max_name_bytes = 64;         // Hello.name, bytes
+    uint32_t max_token_bytes = 1024;      // Hello.token, bytes
+    uint32_t max_connections = 0;         // open connections at once; 0: 2 × max_players + 16
+    uint32_t max_pending_handshakes = 0;  // connections that have not sent Hello yet; 0: max_players + 16, at least 64
+    double handshake_timeout_s = 5;       // s a new connection has to send Hello (counted in ticks)
+    double idle_timeout_s = 5;            // s a joined client may go without an Input (in ticks); 0: never
+    std::string preset;                   // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
     double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
@@ -64,7 +65,8 @@ struct match_counters {
     std::map<std::string, uint64_t> closes;            // connections ended, by close_cause::key()
     fanout_counters snapshots;                         // frames by kind, and the delta frames' bytes and bodies
     uint64_t ticks = 0;                                // world steps so far
-    uint64_t players = 0;                              // players in the match now
+    uint64_t players = 0;                              // players in the match now with a live connection
+    uint64_t players_in_grace = 0;                     // dropped players whose bodies wait for them
     uint64_t max_players = 0;                          // the limit
 };
 
@@ -79,8 +81,13 @@ public:
 
     // A new connection. False: it was refused (its Reject is on its way) and is forgotten.
     bool connect(connection& c);
-    // A verified message from `c`. False: the connection is over and should close once its
-    // output is flushed (a refusal was sent, or the client said Bye).
+    // A verified message from `c` that arrived at `arrival_ns` (the transport's steady clock,
+    // in nanoseconds: rates are measured in real time, so that a stall of the server does not
+    // look like a flood). False: the connection is over and should close once its output is
+    // flushed (a refusal was sent, or the client said Bye).
+    [[nodiscard]] bool receive(connection& c, const protocol::Message& message, int64_t arrival_ns);
+    // The same, for a transport without a clock (tests, simulations): the message arrived at
+    // the current tick's time, tick × the tick period.
     [[nodiscard]] bool receive(connection& c, const protocol::Message& message);
     // Ends `c` with this Reject: bytes its transport could not frame or verify, output that
     // does not drain.
@@ -104,7 +111,9 @@ public:
     const std::string& world_config_json() const { return world_config_json_; }
     // Totals so far, live players' input buffers included.
     match_counters counters() const;
-    size_t player_count() const { return players_.size(); }
+    size_t player_count() const { return players_.size(); }  // live and in the reconnect grace
+    size_t live_player_count() const { return players_.size() - players_in_grace(); }
+    size_t players_in_grace() const;  // dropped players whose bodies wait for them
     size_t connection_count() const { return clients_.size(); }
     // The player `c` plays (0: none yet, or not a connection of this match).
     uint32_t player_of(const connection& c) const;
@@ -122,6 +131,7 @@ private:
     };
     struct client {
         uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
+        std::string address;  // the peer's address without its port
         client_standing standing;
         uint32_t player_id = 0;  // 0 until the Hello is accepted
     };
@@ -129,7 +139,11 @@ private:
     using player_map = std::map<uint32_t, player>;  // by player id: a deterministic order
 
     bool on_hello(connection& c, client& cl, const protocol::hello_msg& hello);
-    bool on_input(connection& c, client& cl, const protocol::input_msg& input);
+    bool on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns);
+    // The waiting connection that gives its handshake slot up to a new one (not `newcomer`).
+    connection* oldest_waiting_of_busiest_address(const connection* newcomer) const;
+    // A new player needs a slot held by a body in the reconnect grace: the oldest one goes.
+    void give_up_oldest_in_grace();
     player_map::iterator find_identity(const std::string& identity);
     // Forgets `it`: counts why it closed, and its player leaves or waits for a reconnection.
     void forget(client_map::iterator it, const close_cause& cause);
@@ -140,6 +154,7 @@ private:
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
+    void send_snapshot(player& p);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 

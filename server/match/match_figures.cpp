@@ -5,7 +5,9 @@ namespace arena::match {
 
 void report(const match_counters& c, figure_sink& out) {
     out.counter({"ticks", "arena_ticks_total", "World steps run."}, c.ticks);
-    out.gauge({"", "arena_players_connected", "Players in the match."}, c.players);
+    out.gauge({"", "arena_players_connected", "Players in the match with a live connection."}, c.players);
+    out.gauge({"", "arena_players_in_grace", "Dropped players whose bodies wait for them to reconnect."},
+              c.players_in_grace);
     out.gauge({"", "arena_players_max", "Players the match admits at once."}, c.max_players);
     out.gauge({"players_peak", "arena_players_peak", "Most players in the match at once."}, uint64_t{c.players_peak});
     out.counter({"joins", "arena_player_joins_total", "Players who joined the match."}, c.joins);

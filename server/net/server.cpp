@@ -45,6 +45,7 @@ match::match_config match_config_of(const server_options& o) {
     c.max_connections = o.max_connections;
     c.max_pending_handshakes = o.max_pending_handshakes;
     c.handshake_timeout_s = static_cast<double>(o.handshake_timeout_ns) / 1e9;
+    c.idle_timeout_s = static_cast<double>(o.idle_timeout_ns) / 1e9;
     return c;
 }
 
@@ -251,13 +252,14 @@ void server::write_stats_json(const std::string& path) const {
         {"limits",
          {{"max_players", options_.match.max_players},
           {"max_connections", match_.rules().connection_limit()},
-          {"max_pending_handshakes", options_.max_pending_handshakes},
+          {"max_pending_handshakes", match_.rules().pending_limit()},
           {"max_inputs_per_second", match_.rules().input_limit()},
           {"input_buffer", options_.match.input_buffer},
           {"max_frame_bytes", protocol::max_client_frame_body},
           {"max_control_frames", options_.max_control_frames},
           {"socket_send_buffer", options_.socket_send_buffer},
           {"handshake_timeout_s", static_cast<double>(options_.handshake_timeout_ns) / 1e9},
+          {"idle_timeout_s", static_cast<double>(options_.idle_timeout_ns) / 1e9},
           {"stall_timeout_s", static_cast<double>(options_.stall_timeout_ns) / 1e9}}},
         {"process", process_figures()},
         {"bytes_in_per_s", seconds > 0 ? static_cast<double>(p.bytes_in) / seconds : 0},

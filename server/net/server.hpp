@@ -29,8 +29,9 @@ struct server_options {
     double duration_s = 0;                         // 0: run until a signal
     std::string stats_json;                        // written at exit when set
     uint32_t max_connections = 0;                  // 0: 2 × max_players + 16
-    uint32_t max_pending_handshakes = 64;          // connections that have not sent Hello yet
+    uint32_t max_pending_handshakes = 0;           // not sent Hello yet; 0: max_players + 16, at least 64
     int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
+    int64_t idle_timeout_ns = 5'000'000'000;       // a joined client's Inputs must not pause longer; 0: never
     int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
     uint32_t max_control_frames = 64;              // queued control messages per client
     // Kernel send buffer per client, bytes: bounds the memory a client that does not read can

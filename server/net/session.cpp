@@ -59,12 +59,13 @@ void session::read_available(std::span<uint8_t> buffer) {
             return;
         }
         owner_.count_in(n);
-        if (!take_frames(std::span<const uint8_t>(buffer.data(), n))) return;
+        // Rates are measured in real time: after a stall of the server, what queued is read at once.
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), n), owner_.now_ns())) return;
         if (n < buffer.size()) return;  // the socket is drained: the next recv would find nothing
     }
 }
 
-bool session::take_frames(std::span<const uint8_t> data) {
+bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
     while (!closing_) {
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
@@ -78,7 +79,7 @@ bool session::take_frames(std::span<const uint8_t> data) {
             return false;
         }
         owner_.count_message_in();
-        const bool go_on = match_.receive(*this, *verified.value);
+        const bool go_on = match_.receive(*this, *verified.value, arrival_ns);
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing

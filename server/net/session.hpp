@@ -41,7 +41,7 @@ public:
 
 private:
     // Frames `data` and hands each verified message to the match; false: stop reading.
-    bool take_frames(std::span<const uint8_t> data);
+    bool take_frames(std::span<const uint8_t> data, int64_t arrival_ns);
     boost::asio::awaitable<void> writer();
     void close_after(protocol::frame_bytes last_frame);
     void close_now();

@@ -17,6 +17,13 @@ inline bool deliver(match::match& m, match::connection& c, const protocol::frame
     return m.receive(c, *verified.value);
 }
 
+// The same, arrived at `arrival_ns` on the transport's clock (rates are measured in real time).
+inline bool deliver_at(match::match& m, match::connection& c, const protocol::frame_bytes& frame, int64_t arrival_ns) {
+    auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
+    REQUIRE(verified);
+    return m.receive(c, *verified.value, arrival_ns);
+}
+
 // Connects `c` (when it is new) and sends its Hello; `identity` goes in the token, which an
 // open server takes as the client's key. The player id, or 0 when refused.
 inline uint32_t join(match::match& m, match::connection& c, const protocol::hello_msg& hello,

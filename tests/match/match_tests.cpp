@@ -1,6 +1,7 @@
 // The match without sockets: connections are recorders of what they were sent.
 #include <catch2/catch.hpp>
 #include <limits>
+#include <stdexcept>
 
 #include "match/drive.hpp"
 #include "protocol/decode.hpp"
@@ -109,8 +110,9 @@ TEST_CASE("a NaN input and an input flood are refused", "[match]") {
     fake_client d;
     REQUIRE(join(g, d, hello()) != 0);
     g.tick();
+    // A burst of 5 s of inputs at the limit is allowed (what queues while the server stalls).
     bool flood = false;
-    for (uint32_t s = 1; s <= 20 && !flood; ++s) flood = !send_input(g, d, {s, 0, 0, 0});
+    for (uint32_t s = 1; s <= 200 && !flood; ++s) flood = !send_input(g, d, {s, 0, 0, 0});
     REQUIRE(flood);
     REQUIRE(d.rejected);
     CHECK(*d.rejected == protocol::RejectCode::rate_limit);
@@ -195,4 +197,112 @@ TEST_CASE("a player without an identity or who says bye leaves at once", "[match
     drop(g, anonymous);
     say_bye(g, named, "client said bye");
     CHECK(g.player_count() == 0);
+}
+
+namespace {
+
+// Ends its own connection from inside a send, as a transport may when its queue is full.
+struct rejects_while_sending : fake_client {
+    match::match* game = nullptr;
+    void send(protocol::frame_bytes frame) override {
+        fake_client::send(std::move(frame));
+        if (game) game->reject(*this, {protocol::RejectCode::slow_consumer, "queue full"});
+    }
+};
+
+size_t welcomes_in(const fake_client& c) {
+    size_t n = 0;
+    for (const auto& f : c.frames) {
+        auto m = protocol::verify_message(f, protocol::server_frame_limits);
+        if (m && m.value->payload_type() == protocol::Payload::Welcome) ++n;
+    }
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("reconnects in one tick each get one Welcome though one is refused while it is sent", "[match][reconnect]") {
+    match::match_config config = make_config();
+    config.reconnect_grace_s = 10;
+    match::match g(config, world::asteroids_preset());
+    fake_client a1, b1, c1;
+    REQUIRE(join(g, a1, hello(), "key-a") != 0);
+    REQUIRE(join(g, b1, hello(), "key-b") != 0);
+    REQUIRE(join(g, c1, hello(), "key-c") != 0);
+    g.tick();
+    drop(g, a1);
+    drop(g, b1);
+    drop(g, c1);
+    g.tick();
+    rejects_while_sending a2;
+    fake_client b2, c2;
+    a2.game = &g;
+    REQUIRE(join(g, a2, hello(), "key-a") != 0);
+    REQUIRE(join(g, b2, hello(), "key-b") != 0);
+    REQUIRE(join(g, c2, hello(), "key-c") != 0);
+    g.tick();  // a2's Welcome ends a2, and its player leaves the list being walked
+    CHECK(a2.rejected == protocol::RejectCode::slow_consumer);
+    CHECK(welcomes_in(b2) == 1);
+    CHECK(welcomes_in(c2) == 1);
+    g.tick();
+    CHECK(welcomes_in(b2) == 1);
+    CHECK(welcomes_in(c2) == 1);
+}
+
+namespace {
+
+// Its first Welcome makes another client reconnect at once, from inside the send.
+struct reconnects_another : fake_client {
+    match::match* game = nullptr;
+    fake_client* other = nullptr;
+    void send(protocol::frame_bytes frame) override {
+        fake_client::send(std::move(frame));
+        if (game && other) {
+            match::match& g = *game;
+            game = nullptr;
+            REQUIRE(join(g, *other, hello(), "key-e") != 0);
+        }
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a reconnect during another's Welcome gets its own Welcome next tick", "[match][reconnect]") {
+    match::match_config config = make_config();
+    config.reconnect_grace_s = 10;
+    match::match g(config, world::asteroids_preset());
+    fake_client d1, e1, e2;
+    REQUIRE(join(g, d1, hello(), "key-d") != 0);
+    REQUIRE(join(g, e1, hello(), "key-e") != 0);
+    g.tick();
+    drop(g, d1);
+    drop(g, e1);
+    reconnects_another d2;
+    d2.game = &g;
+    d2.other = &e2;
+    REQUIRE(join(g, d2, hello(), "key-d") != 0);
+    g.tick();  // d2's Welcome: e reconnects while the pending Welcomes are walked
+    CHECK(welcomes_in(d2) == 1);
+    g.tick();
+    CHECK(welcomes_in(e2) == 1);
+    CHECK(g.counters().reconnects == 2);
+}
+
+TEST_CASE("a snapshot rate that does not divide the tick rate is refused: the Welcome could not tell it", "[match]") {
+    match::match_config config = make_config();
+    config.snapshot_rate = 50;
+    CHECK_THROWS_AS(match::match(config, world::asteroids_preset()), std::invalid_argument);
+    config.snapshot_rate = 7;
+    CHECK_THROWS_AS(match::match(config, world::asteroids_preset()), std::invalid_argument);
+    config.snapshot_rate = 30;
+    match::match ok(config, world::asteroids_preset());
+    fake_client c;
+    REQUIRE(join(ok, c, hello()) != 0);
+    for (int k = 0; k < 13; ++k) ok.tick();
+    auto welcome =
+        protocol::decode_welcome(*protocol::verify_message(c.frames[0], protocol::server_frame_limits).value);
+    REQUIRE(welcome);
+    CHECK(welcome.value.snapshot_rate == 30);
+    REQUIRE(c.snapshot_ticks.size() >= 2);
+    CHECK(c.snapshot_ticks[1] - c.snapshot_ticks[0] == 60u / welcome.value.snapshot_rate);
 }
