@@ -295,7 +295,7 @@ TEST_CASE("the input rate is measured in real time: a stall's queued inputs are 
     CHECK(sent < 1300);
 }
 
-TEST_CASE("a burst of Pings is refused as ping_limit; one a second is answered for ever", "[match][admission]") {
+TEST_CASE("a burst of Pings is refused as ping_limit, one a second is answered for ever", "[match][admission]") {
     match::match m({}, small_world());
     client steady, burst;
     REQUIRE(join(m, steady, hello()) != 0);
@@ -313,7 +313,7 @@ TEST_CASE("a burst of Pings is refused as ping_limit; one a second is answered f
     CHECK(m.counters().rejects.count(RejectCode::slow_consumer) == 0);
 }
 
-TEST_CASE("names that would forge or cut log lines are refused; a Bye reason is escaped", "[match][admission]") {
+TEST_CASE("names that would forge or cut log lines are refused, a Bye reason is escaped", "[match][admission]") {
     std::vector<std::string> lines;
     match::match m({}, small_world(), match::logger([&](std::string_view l) { lines.emplace_back(l); }));
     client newline, nul, latin1, fine;

@@ -49,7 +49,8 @@ TEST_CASE("arena-server refuses numeric flags that would overflow, naming the fl
         {"--drain-grace", "1e10"},   {"--stats-interval", "1e300"},
         {"--view-radius", "1e300"},  {"--agones-shutdown-timeout", "1e10"},
         {"--stall-timeout", "inf"},  {"--duration", "nan"},
-        {"--reconnect-grace", "-1"},
+        {"--reconnect-grace", "-1"}, {"--idle-timeout", "1e10"},
+        {"--idle-timeout", "-1"},
     };
     for (const auto& [flag, value] : cases) {
         INFO(flag << " " << value);
@@ -65,14 +66,28 @@ TEST_CASE("arena-server refuses numeric flags that would overflow, naming the fl
 TEST_CASE("arena-server takes its flags at their upper bounds without wrapping", "[net][cli]") {
     const std::string stats = temp_path("bounds-stats.json");
     const auto r = server_run(
-        "--stall-timeout 3600 --handshake-timeout 3600 --reconnect-grace 3600 --drain-grace 60 "
+        "--stall-timeout 3600 --handshake-timeout 3600 --idle-timeout 3600 --reconnect-grace 3600 --drain-grace 60 "
         "--view-radius 1e7 --duration 0.3 --stats-json " +
         stats);
     CHECK(r.exit_code == 0);
     const std::string text = read_file(stats);
     CHECK(text.find("\"stall_timeout_s\": 3600.0") != std::string::npos);
     CHECK(text.find("\"handshake_timeout_s\": 3600.0") != std::string::npos);
+    CHECK(text.find("\"idle_timeout_s\": 3600.0") != std::string::npos);
     std::remove(stats.c_str());
+}
+
+TEST_CASE("a snapshot rate that does not divide the tick rate is refused, so the Welcome tells the truth", "[net][cli]") {
+    // Asking for 50 at 60 Hz used to give 60 snapshots a second, and 7 gave 7.5, while the
+    // Welcome said 50 and 7.
+    for (const char* args : {"--snapshot-rate 50", "--snapshot-rate 7", "--tick-rate 30 --snapshot-rate 20"}) {
+        INFO(args);
+        const auto r = server_run(std::string(args) + " --duration 0.2");
+        CHECK(r.exit_code == 2);
+        CHECK(r.output.rfind("arena-server: --snapshot-rate: ", 0) == 0);
+        CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    }
+    CHECK(server_run("--snapshot-rate 30 --duration 0.2").exit_code == 0);
 }
 
 TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
