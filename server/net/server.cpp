@@ -67,6 +67,7 @@ server::server(boost::asio::io_context& io, const server_options& options, const
       options_(options),
       match_(match_config_of(options), world_config, server_logger(), token_check_of(options)),
       acceptor_(io),
+      accept_backoff_("game", [](const std::string& line) { log_line("%s", line.c_str()); }),
       clock_(1'000'000'000LL / options.match.tick_rate, options.max_catch_up),
       tick_timer_(io),
       stop_timer_(io) {}
@@ -86,6 +87,7 @@ void server::start() {
     std::fflush(stdout);
     log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.match.tick_rate,
              options_.match.snapshot_rate, options_.match.max_players, match_.state().bodies().size());
+    warn_about_descriptor_limit();
     started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
     boost::asio::co_spawn(io_, accept_loop(), boost::asio::detached);
     boost::asio::co_spawn(io_, tick_loop(), boost::asio::detached);
@@ -97,15 +99,32 @@ void server::start() {
     }
 }
 
+void server::warn_about_descriptor_limit() const {
+    // Each connection is a descriptor; the listening sockets, the log, a recording and the
+    // metrics endpoint's connections need some more (32 is generous).
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
+    const uint64_t wanted = static_cast<uint64_t>(match_.rules().connection_limit()) + 32;
+    if (wanted > limit.rlim_cur)
+        log_line(
+            "warning: --max-connections %u (+32 for the server's own files) exceeds the descriptor limit %llu "
+            "(ulimit -n): connections beyond it wait in the listen queue",
+            match_.rules().connection_limit(), static_cast<unsigned long long>(limit.rlim_cur));
+}
+
 boost::asio::awaitable<void> server::accept_loop() {
     while (!stopping_) {
         boost::system::error_code ec;
         tcp::socket socket = co_await acceptor_.async_accept(boost::asio::redirect_error(use_awaitable, ec));
         if (ec) {
             if (stopping_ || ec == boost::asio::error::operation_aborted) co_return;
-            log_line("accept failed: %s", ec.message().c_str());
+            // Out of descriptors the connection stays queued and accept fails again at once:
+            // retrying at once spun a core and logged millions of lines. Pause instead.
+            co_await accept_backoff_.pause_after(ec);
+            if (stopping_) co_return;
             continue;
         }
+        accept_backoff_.succeeded();
         auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
         sessions_.emplace(s->id(), s);
         process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size());

@@ -14,6 +14,7 @@
 #include "server/match/match.hpp"
 #include "server/net/duration_histogram.hpp"
 #include "server/net/tick_clock.hpp"
+#include "server/ops/accept_backoff.hpp"
 #include "server/ops/histogram.hpp"
 #include "server/ops/metrics.hpp"
 #include "server/ops/process_counters.hpp"
@@ -83,6 +84,7 @@ public:
 
 private:
     boost::asio::awaitable<void> accept_loop();
+    void warn_about_descriptor_limit() const;
     boost::asio::awaitable<void> tick_loop();
     void run_due_ticks();
     void read_sessions();  // what every client sent since the last tick
@@ -94,6 +96,7 @@ private:
     server_options options_;
     match::match match_;
     boost::asio::ip::tcp::acceptor acceptor_;
+    ops::accept_backoff accept_backoff_;  // out of descriptors: pause accepting, log at a bounded rate
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
     std::vector<std::shared_ptr<session>> reading_;          // read_sessions()' copy: reading may close one
