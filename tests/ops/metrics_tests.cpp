@@ -30,6 +30,7 @@ server_metrics sample_metrics() {
     arena::match::match_counters c;
     c.ticks = 600;
     c.players = 3;
+    c.players_in_grace = 2;
     c.max_players = 64;
     c.joins = 5;
     c.leaves = 2;
@@ -177,6 +178,7 @@ TEST_CASE("ops metrics: the rendered values are the server's figures", "[ops][me
     CHECK(value_of(p, "arena_tick_duration_seconds_count") == "6");
     CHECK(value_of(p, "arena_tick_overruns_total") == "2");
     CHECK(value_of(p, "arena_players_connected") == "3");
+    CHECK(value_of(p, "arena_players_in_grace") == "2");
     CHECK(value_of(p, "arena_player_joins_total") == "5");
     CHECK(value_of(p, "arena_player_leaves_total") == "2");
     CHECK(value_of(p, "arena_rejects_total", "reason=\"bad_input\"") == "1");
