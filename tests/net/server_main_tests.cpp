@@ -77,7 +77,8 @@ TEST_CASE("arena-server takes its flags at their upper bounds without wrapping",
     std::remove(stats.c_str());
 }
 
-TEST_CASE("a snapshot rate that does not divide the tick rate is refused, so the Welcome tells the truth", "[net][cli]") {
+TEST_CASE("a snapshot rate that does not divide the tick rate is refused, so the Welcome tells the truth",
+          "[net][cli]") {
     // Asking for 50 at 60 Hz used to give 60 snapshots a second, and 7 gave 7.5, while the
     // Welcome said 50 and 7.
     for (const char* args : {"--snapshot-rate 50", "--snapshot-rate 7", "--tick-rate 30 --snapshot-rate 20"}) {

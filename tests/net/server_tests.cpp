@@ -359,7 +359,8 @@ TEST_CASE("out of descriptors the accept loop pauses and logs at a bounded rate"
     CHECK(cpu < 0.5);
     const std::string log = server->log();
     size_t lines = 0;
-    for (size_t at = log.find("accept failed"); at != std::string::npos; at = log.find("accept failed", at + 1)) ++lines;
+    for (size_t at = log.find("accept failed"); at != std::string::npos; at = log.find("accept failed", at + 1))
+        ++lines;
     CHECK(lines <= 2);  // one line per 10 s at most
     // Once descriptors are free again (the idle crowd times out), a player joins.
     crowd.clear();
