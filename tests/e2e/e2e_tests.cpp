@@ -295,7 +295,7 @@ TEST_CASE("bots mint their own tokens from the server's secret file", "[e2e][aut
     CHECK(unsigned_bots.report.at("joined") == 0);
 }
 
-// The input rate is measured in real time (issue 15): a server that stood still (a VM pause, a
+// The input rate is measured in real time: a server that stood still (a VM pause, a
 // slow disk behind --record) reads the inputs that queued in the kernel all at once, and that
 // burst is not a flood. Counted per second of ticks, it dropped every bot with rate_limit.
 TEST_CASE("a server stopped for 3 s (SIGSTOP) and continued keeps every bot", "[e2e][stall]") {
