@@ -27,7 +27,16 @@ int run_single_body(const sim::single_body_scenario& s) {
     return 0;
 }
 
-int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, uint32_t steps, uint64_t seed) {
+// Every body as CSV, in id order: what a run ended with, checkable from outside.
+void print_final_state(const world::world& w) {
+    std::printf("id,x,y,angle,vx,vy,omega\n");
+    for (const world::body& b : w.bodies())
+        std::printf("%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", b.id, b.position.x(), b.position.y(), b.angle, b.velocity.x(),
+                    b.velocity.y(), b.angular_velocity);
+}
+
+int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, uint32_t steps, uint64_t seed,
+               bool final_state) {
     if (bodies_given) {
         // Every rock is a body: beyond max_bodies the world would only stop spawning.
         if (bodies > config.max_bodies) {
@@ -49,6 +58,7 @@ int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, u
     std::printf("bodies=%zu steps=%u\n", w.bodies().size(), steps);
     std::printf("hash=%016" PRIx64 "\n", w.hash());
     std::printf("ms_per_step=%.4f\n", steps ? seconds * 1e3 / steps : 0.0);
+    if (final_state) print_final_state(w);
     return 0;
 }
 
@@ -112,7 +122,8 @@ int main(int argc, char** argv) {
     CLI::App app{"arena-sim: run the Arena world from the command line", "arena-sim"};
     sim::single_body_scenario s;
     std::string integrator = "semi-implicit", preset, config_file, plot;
-    uint32_t bodies = 0;
+    uint32_t bodies = 0, base = 20;
+    bool final_state = false;
     uint64_t seed = 1;
     app.add_option("--integrator", integrator, "semi-implicit (default) or explicit")
         ->check(CLI::IsMember({"semi-implicit", "explicit"}));
@@ -126,7 +137,11 @@ int main(int argc, char** argv) {
     app.add_option("--density", s.density, "density of the medium ρ, kg/m³ (drag)");
     app.add_option("--drag-coefficient", s.drag_coefficient, "drag coefficient Cd");
     app.add_option("--area", s.area, "frontal area A, m²");
-    app.add_option("--preset", preset, "run a whole preset (asteroids, platformer) and print its final hash");
+    app.add_option("--preset", preset, "run a whole preset (asteroids, platformer, pyramid) and print its final hash");
+    auto* base_opt = app.add_option("--base", base, "boxes in the bottom row of --preset pyramid (default 20)")
+                         ->check(CLI::Range(1u, 1000u));
+    app.add_flag("--final-state", final_state,
+                 "after a --preset/--config run, print every body as CSV: id,x,y,angle,vx,vy,omega");
     app.add_option("--config", config_file, "run a whole world from a JSON config file");
     auto* bodies_opt = app.add_option("--bodies", bodies, "rock count for --preset/--config");
     app.add_option("--seed", seed, "seed for --preset/--config (default 1)");
@@ -143,13 +158,20 @@ int main(int argc, char** argv) {
                 return 2;
             }
             config = std::get<world::world_config>(loaded);
+        } else if (preset == "pyramid") {
+            config = world::pyramid_preset(base);
         } else if (auto p = world::preset_by_name(preset)) {
             config = *p;
         } else {
-            std::fprintf(stderr, "arena-sim: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
+            std::fprintf(stderr, "arena-sim: --preset: unknown preset '%s' (asteroids, platformer, pyramid)\n",
+                         preset.c_str());
             return 2;
         }
-        return run_preset(config, bodies, bodies_opt->count() > 0, s.steps, seed);
+        if (base_opt->count() > 0 && preset != "pyramid") {
+            std::fprintf(stderr, "arena-sim: --base: only for --preset pyramid\n");
+            return 2;
+        }
+        return run_preset(config, bodies, bodies_opt->count() > 0, s.steps, seed, final_state);
     }
     if (auto problem = sim::check_scenario(s)) {
         std::fprintf(stderr, "arena-sim: %s\n", problem->c_str());

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "server/world/body.hpp"
 #include "server/world/presets.hpp"
 
 namespace arena::config {
@@ -119,9 +120,78 @@ void read_material(const json& j, const std::string& path, world::body_material&
     r.read("mass", m.mass);
     r.read("radius", m.radius);
     r.read("restitution", m.restitution);
+    r.read("friction", m.friction);
     r.read("drag_area", m.drag_area);
     r.read("fixed_rotation", m.fixed_rotation);
     r.finish();
+    if (!(m.friction >= 0)) throw bad_field{r.where("friction") + " must not be negative"};
+}
+
+constexpr std::pair<const char*, world::shape_type> shape_names[] = {
+    {"circle", world::shape_type::circle},   {"capsule", world::shape_type::capsule},
+    {"box", world::shape_type::box},         {"polygon", world::shape_type::polygon},
+    {"segment", world::shape_type::segment}, {"chain", world::shape_type::chain}};
+
+void read_points(const json& j, const std::string& path, std::vector<vec2>& points) {
+    if (!j.is_array()) throw bad_field{"field '" + path + "' must be an array of [x, y] points"};
+    points.clear();
+    for (size_t i = 0; i < j.size(); ++i) {
+        json holder = {{"p", j[i]}};
+        object_reader r(holder, path + "[" + std::to_string(i) + "]");
+        vec2 p{0, 0};
+        // Named by the point's index: "field 'bodies[0].shape.points[2]' must be ...".
+        if (!j[i].is_array() || j[i].size() != 2 || !j[i][0].is_number() || !j[i][1].is_number())
+            throw bad_field{"field '" + path + "[" + std::to_string(i) + "]' must be an array of two numbers [x, y]"};
+        r.read("p", p);
+        points.push_back(p);
+    }
+}
+
+void read_shape(const json& j, const std::string& path, world::shape_config& s) {
+    object_reader r(j, path);
+    if (!r.take("type"))
+        throw bad_field{r.where("type") + " is required (circle, capsule, box, polygon, segment, chain)"};
+    r.read_enum("type", s.type, shape_names);
+    r.read("radius", s.radius);
+    r.read("rounding", s.rounding);
+    r.read("half_extents", s.half_extents);
+    r.read("half_length", s.half_length);
+    if (const json* p = r.take("points")) read_points(*p, r.child("points"), s.points);
+    r.finish();
+    if (s.type == world::shape_type::chain) {
+        if (s.points.size() < 2) throw bad_field{r.where("points") + " must hold at least two points"};
+        return;
+    }
+    std::string error;
+    vec2 centre{0, 0};
+    if (!world::make_shape(s, error, centre)) {
+        // The shape's message names its field in quotes: make it the full path.
+        const size_t quote = error.find('\'');
+        const size_t end = quote == std::string::npos ? quote : error.find('\'', quote + 1);
+        if (end == std::string::npos) throw bad_field{r.where() + ": " + error};
+        const std::string field = error.substr(quote + 1, end - quote - 1);
+        throw bad_field{r.where(field.c_str()) + error.substr(end + 1)};
+    }
+}
+
+void read_bodies(const json& j, const std::string& path, std::vector<world::body_config>& bodies) {
+    if (!j.is_array()) throw bad_field{"field '" + path + "' must be an array"};
+    bodies.clear();
+    for (size_t i = 0; i < j.size(); ++i) {
+        world::body_config b;
+        const std::string here = path + "[" + std::to_string(i) + "]";
+        object_reader r(j[i], here);
+        const json* shape = r.take("shape");
+        if (!shape) throw bad_field{r.where("shape") + " is required"};
+        read_shape(*shape, r.child("shape"), b.shape);
+        if (const json* m = r.take("material")) read_material(*m, r.child("material"), b.material);
+        r.read("position", b.position);
+        r.read("angle", b.angle);
+        r.read("velocity", b.velocity);
+        r.read("static", b.is_static);
+        r.finish();
+        bodies.push_back(b);
+    }
 }
 
 void read_control(const json& j, const std::string& path, world::control_config& c) {
@@ -143,7 +213,10 @@ void read_rocks(const json& j, const std::string& path, world::rock_config& rock
     r.read("max_radius", rocks.max_radius);
     r.read("max_speed", rocks.max_speed);
     if (const json* m = r.take("material")) read_material(*m, r.child("material"), rocks.material);
+    r.read("polygon_vertices", rocks.polygon_vertices);
     r.finish();
+    if (rocks.polygon_vertices != 0 && (rocks.polygon_vertices < 3 || rocks.polygon_vertices > 8))
+        throw bad_field{r.where("polygon_vertices") + " must be 0 (circles) or 3 to 8"};
 }
 
 void read_fluids(const json& j, const std::string& path, std::vector<world::fluid_region>& fluids) {
@@ -276,6 +349,7 @@ world::world_config read_world(const json& j) {
     if (const json* m = r.take("player")) read_material(*m, "player", c.player);
     if (const json* m = r.take("control")) read_control(*m, "control", c.control);
     if (const json* m = r.take("rocks")) read_rocks(*m, "rocks", c.rocks);
+    if (const json* b = r.take("bodies")) read_bodies(*b, "bodies", c.bodies);
     r.finish();
     check_ranges(c);
     return c;
@@ -293,8 +367,34 @@ json vec_json(const vec2& v) {
 }
 
 json material_json(const world::body_material& m) {
-    return {{"density", m.density},         {"mass", m.mass},           {"radius", m.radius},
-            {"restitution", m.restitution}, {"drag_area", m.drag_area}, {"fixed_rotation", m.fixed_rotation}};
+    return {{"density", m.density},
+            {"mass", m.mass},
+            {"radius", m.radius},
+            {"restitution", m.restitution},
+            {"friction", m.friction},
+            {"drag_area", m.drag_area},
+            {"fixed_rotation", m.fixed_rotation}};
+}
+
+json bodies_json(const std::vector<world::body_config>& bodies) {
+    json out = json::array();
+    for (const world::body_config& b : bodies) {
+        json points = json::array();
+        for (const vec2& p : b.shape.points) points.push_back(vec_json(p));
+        out.push_back({{"shape",
+                        {{"type", enum_name(b.shape.type, shape_names)},
+                         {"radius", b.shape.radius},
+                         {"rounding", b.shape.rounding},
+                         {"half_extents", vec_json(b.shape.half_extents)},
+                         {"half_length", b.shape.half_length},
+                         {"points", points}}},
+                       {"material", material_json(b.material)},
+                       {"position", vec_json(b.position)},
+                       {"angle", b.angle},
+                       {"velocity", vec_json(b.velocity)},
+                       {"static", b.is_static}});
+    }
+    return out;
 }
 
 }  // namespace
@@ -367,7 +467,9 @@ std::string config_to_json(const world::world_config& c) {
           {"min_radius", c.rocks.min_radius},
           {"max_radius", c.rocks.max_radius},
           {"max_speed", c.rocks.max_speed},
-          {"material", material_json(c.rocks.material)}}},
+          {"material", material_json(c.rocks.material)},
+          {"polygon_vertices", c.rocks.polygon_vertices}}},
+        {"bodies", bodies_json(c.bodies)},
     };
     return j.dump(2);
 }

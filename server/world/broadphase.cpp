@@ -44,6 +44,17 @@ void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
     }
 }
 
+// The proxy of body i: its bounding box and circle. A body with a shape gets its rotation
+// computed here, once a step, and kept for the narrow phase. Without the shapes (the view
+// index), every body is its bounding circle.
+inline cell_proxy make_proxy(const body& b, uint32_t i, broadphase_scratch& s, const proxy_source& source) {
+    if (b.shape == no_shape || source.pool.empty()) return {b.position, vec2{b.radius, b.radius}, b.radius, i};
+    const cos_sin r = compute_cos_sin(b.angle);
+    s.rotations[i] = r;
+    const aabb box = compute_aabb(source.pool[b.shape], b.position, r.c, r.s);
+    return {(box.lo + box.hi) * 0.5f, (box.hi - box.lo) * 0.5f, -b.radius, i};
+}
+
 }  // namespace
 
 // Sorts the bodies by cell (stable, so in index order within a cell). A grid with a table (see
@@ -52,21 +63,25 @@ void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
 // large for a table is radix-sorted: O(bodies), whatever the number of cells, since the asteroids
 // preset has about 28 cells a body, nearly all empty, and walking them (with a division per
 // neighbour) was 90 % of a 10k-body step.
-void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
-    const size_t n = bodies.size();
+void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& s, const proxy_source& source) {
     const uint64_t cells = g.cell_count();
-    const bool table = !g.wraps || cells <= max_table_cells(n);
+    s.items.resize(bodies.size());
+    s.unsorted.resize(bodies.size());
+    if (!source.pool.empty()) s.rotations.resize(bodies.size());
+    uint32_t max_cell = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        const body& b = bodies[i];
+        const cell_proxy p = make_proxy(b, static_cast<uint32_t>(i), s, source);
+        s.unsorted[i] = p;
+        if (source.dynamic_only && b.is_static()) continue;
+        const uint32_t c = cell_index(g, p.position);
+        max_cell = std::max(max_cell, c);
+        s.items[n++] = static_cast<uint64_t>(c) << 32 | static_cast<uint32_t>(i);
+    }
     s.items.resize(n);
     s.swap_items.resize(n);
-    s.unsorted.resize(n);
-    uint32_t max_cell = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const body& b = bodies[i];
-        const uint32_t c = cell_index(g, b.position);
-        max_cell = std::max(max_cell, c);
-        s.items[i] = static_cast<uint64_t>(c) << 32 | static_cast<uint32_t>(i);
-        s.unsorted[i] = {b.position, b.radius, static_cast<uint32_t>(i)};
-    }
+    const bool table = !g.wraps || cells <= max_table_cells(n);
     s.cell_start.clear();
     if (table) {
         sort_by_cell_with_table(s, static_cast<uint32_t>(cells));
@@ -92,10 +107,14 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
 
 namespace detail {
 
-void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s) {
-    s.proxies.resize(bodies.size());
-    for (size_t i = 0; i < bodies.size(); ++i)
-        s.proxies[i] = {bodies[i].position, bodies[i].radius, static_cast<uint32_t>(i)};
+void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s, const proxy_source& source) {
+    s.proxies.clear();
+    s.unsorted.resize(bodies.size());
+    if (!source.pool.empty()) s.rotations.resize(bodies.size());
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        s.unsorted[i] = make_proxy(bodies[i], static_cast<uint32_t>(i), s, source);
+        if (!(source.dynamic_only && bodies[i].is_static())) s.proxies.push_back(s.unsorted[i]);
+    }
 }
 
 }  // namespace detail
@@ -141,15 +160,20 @@ grid make_grid(const body_extent& extent, size_t count, const world_config& conf
     return g;
 }
 
-void find_candidate_pairs(std::span<const body> bodies, const world_config& config, broadphase_scratch& s) {
-    find_candidate_pairs(bodies, make_grid(bodies, config), s);
+void find_candidate_pairs(std::span<const body> bodies, const world_config& config, broadphase_scratch& s,
+                          const proxy_source& source) {
+    find_candidate_pairs(bodies, make_grid(bodies, config), s, source);
 }
 
-void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& s) {
+void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& s,
+                          const proxy_source& source) {
     s.pairs.clear();
-    for_each_candidate_pair(bodies, g, s, [&s](const cell_proxy& p, const cell_proxy& q) {
-        s.pairs.emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
-    });
+    for_each_candidate_pair(
+        bodies, g, s,
+        [&s](const cell_proxy& p, const cell_proxy& q) {
+            s.pairs.emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
+        },
+        source);
 }
 
 }  // namespace arena::world

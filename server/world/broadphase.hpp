@@ -1,6 +1,8 @@
 #pragma once
-// Uniform-grid broadphase: candidate pairs of circles whose cells touch, in a deterministic
-// order (cells in index order, bodies within a cell in id order).
+// Uniform-grid broadphase: candidate pairs of bodies whose cells touch, in a deterministic
+// order (cells in index order, bodies within a cell in id order). Bodies are binned by the
+// centre of their bounding box, in cells at least as wide as the largest bounding circle's
+// diameter. Static bodies with a shape stay out of it (static_index.hpp).
 #include <algorithm>
 #include <cstdint>
 #include <span>
@@ -9,15 +11,22 @@
 
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
+#include "server/world/shape.hpp"
+#include "server/world/trig.hpp"
 
 namespace arena::world {
 
-// A body as the broadphase reads it: 16 contiguous bytes in cell order, so that testing a
-// candidate pair reads two nearby proxies instead of two 88-byte bodies anywhere in the array.
+// A body as the broadphase reads it: 24 contiguous bytes in cell order, so that testing a
+// candidate pair reads two nearby proxies instead of two bodies anywhere in the array.
 struct cell_proxy {
-    vec2 position;   // m
-    real radius;     // m
+    vec2 position;   // m, the centre of the bounding box (a circle's centre)
+    vec2 half;       // m, the bounding box's half extents
+    real radius;     // m, the bounding circle's radius: positive for a circle, negated for any
+                     // other shape (so that circle pairs keep their exact distance test)
     uint32_t index;  // in the body span
+
+    bool is_circle() const { return radius > 0; }
+    real bounding_radius() const { return radius > 0 ? radius : -radius; }
 };
 
 // Buffers reused from step to step so that the broadphase allocates only while the world grows.
@@ -32,6 +41,15 @@ struct broadphase_scratch {
     std::vector<uint32_t> cell_start;                  // cell → first slot in `proxies` (size cells + 1); empty
                                                        // when the grid has too many cells for a table
     std::vector<std::pair<uint32_t, uint32_t>> pairs;  // candidate (a, b) indices, a < b
+    std::vector<cos_sin> rotations;                    // body index → rotation, for bodies with a shape
+};
+
+// Where the broadphase finds the shapes of bodies that are not circles (body::shape indexes
+// `pool`; without a pool every body is taken as its bounding circle), and whether it leaves the static bodies out (the
+// world keeps them in a static_index of their own; the view index wants every body).
+struct proxy_source {
+    std::span<const shape> pool{};
+    bool dynamic_only = false;
 };
 
 // The uniform grid over the world: cells at least as wide as the largest circle's diameter.
@@ -49,9 +67,10 @@ struct grid {
     uint64_t cell_count() const { return uint64_t{stride} * (wraps ? ny : ny + 1); }
 };
 
-// What the grid needs to know of the bodies: the largest radius and the bounding box of the
-// centres. The world gathers it in the pass that integrates velocities, so the broadphase does
-// not stream the body array once more for it.
+// What the grid needs to know of the bodies: the largest (bounding) radius and the bounding box
+// of the centres. The world adds only its dynamic bodies: a static body's extent would size the
+// grid for nothing (a 100 m segment would make 100 m cells). The world gathers it in the pass that integrates
+// velocities, so the broadphase does not stream the body array once more for it.
 struct body_extent {
     real max_radius = 0;  // m
     vec2 lo{0, 0};        // m, smallest centre coordinates
@@ -94,7 +113,8 @@ inline uint32_t cell_index(const grid& g, const vec2& p) {
 // does not wrap (make_grid keeps it near 4 cells a body), or one of at most
 // max_table_cells(count) cells, gets the cell table (cell_start); wrapping grids also get the
 // occupied cells listed as runs (run_cell, run_start). O(bodies + table).
-void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch);
+void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch,
+                    const proxy_source& source = {});
 // The largest wrapping grid that gets a cell table: a table costs a pass over its cells, so a
 // sparse wrapping world (the asteroids preset has about 28 cells a body) walks the runs instead.
 inline size_t max_table_cells(size_t bodies) {
@@ -119,15 +139,19 @@ inline slot_range cell_slots(const broadphase_scratch& s, uint32_t cell) {
 }
 
 // Fills scratch.pairs with candidate pairs of body indices (a < b), each pair once.
-void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch);
-void find_candidate_pairs(std::span<const body> bodies, const world_config& config, broadphase_scratch& scratch);
+// Candidates are pairs whose bounding boxes overlap (circles: whose discs overlap).
+void find_candidate_pairs(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch,
+                          const proxy_source& source = {});
+void find_candidate_pairs(std::span<const body> bodies, const world_config& config, broadphase_scratch& scratch,
+                          const proxy_source& source = {});
 
 // Calls visit(p, q) with the two cell proxies of every candidate pair (bodies in the same or
 // neighbouring cells), each pair once, in the order find_candidate_pairs lists them. A template
 // so that the caller's test runs inline: the contact detection's distance test per candidate,
 // behind a call and a vector of pairs, was a fifth of a dense step.
 template <class Visit>
-void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch, Visit&& visit);
+void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& scratch, Visit&& visit,
+                             const proxy_source& source = {});
 
 // Displacement from a to b: the shortest one when the world wraps. Inline: it runs for every
 // candidate pair and every contact in every solver iteration.
@@ -157,19 +181,20 @@ inline uint32_t find_run_from(const broadphase_scratch& s, uint32_t& cursor, uin
 
 // scratch.proxies in body index order, unsorted: a wrapping grid under 3 cells wide would see
 // one neighbour twice, so every pair is tested instead.
-void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s);
+void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s, const proxy_source& source);
 
 }  // namespace detail
 
 template <class Visit>
-void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& s, Visit&& visit) {
+void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadphase_scratch& s, Visit&& visit,
+                             const proxy_source& source) {
     if (g.wraps && (g.nx < 3 || g.ny < 3)) {
-        detail::proxies_in_index_order(bodies, s);
+        detail::proxies_in_index_order(bodies, s, source);
         for (size_t a = 0; a < s.proxies.size(); ++a)
             for (size_t b = a + 1; b < s.proxies.size(); ++b) visit(s.proxies[a], s.proxies[b]);
         return;
     }
-    bucket_by_cell(bodies, g, s);
+    bucket_by_cell(bodies, g, s, source);
     // Each body in cell order meets the bodies after it in its own cell, then those of half of
     // its 3×3 neighbourhood in cell order: (+1, 0), (−1, +1), (0, +1), (+1, +1). Each pair of
     // cells is visited once, so each pair of bodies is.

@@ -29,10 +29,12 @@ struct fluid_region {
 
 // A body's material and shape, used for players and rocks.
 struct body_material {
-    real density = 1.0f;          // kg/m² (2D: mass = density·π·r²); ignored when mass > 0
+    real density = 1.0f;          // kg/m² (2D: mass = density·area); ignored when mass > 0; a
+                                  // shaped body with density 0 and mass 0 is static
     real mass = 0.0f;             // kg; > 0 overrides density
     real radius = 1.0f;           // m, > 0
     real restitution = 0.5f;      // [0, 1]: 0 absorbs an impact, 1 bounces back fully
+    real friction = 0.6f;         // μ ≥ 0, Coulomb friction at contacts (Box2D's default)
     real drag_area = 0.0f;        // m², A·Cd: frontal area times drag coefficient
     bool fixed_rotation = false;  // true: never rotates (infinite moment of inertia)
 };
@@ -48,13 +50,37 @@ struct control_config {
     bool impulse_needs_ground = false;     // true: the impulse fires only while on the floor
 };
 
+// A shape as a config describes it (world.cpp makes the shape.hpp one from it).
+enum class shape_type : uint8_t { circle, capsule, box, polygon, segment, chain };
+
+struct shape_config {
+    shape_type type = shape_type::circle;
+    real radius = 0.5f;             // m > 0: circle and capsule radius
+    real rounding = 0.0f;           // m ≥ 0: box and polygon rounding radius
+    vec2 half_extents{0.5f, 0.5f};  // m > 0: box
+    real half_length = 0.5f;        // m > 0: capsule, whose axis runs along the body's x
+    std::vector<vec2> points{};     // m, body frame: polygon (3 to 8, convex hull taken), segment (2),
+                                    // chain (2 or more: one static segment per pair)
+};
+
+// A body placed when the world is created, before the rocks.
+struct body_config {
+    shape_config shape{};
+    body_material material{};  // its radius is ignored: the shape's counts
+    vec2 position{0, 0};       // m
+    real angle = 0.0f;         // rad
+    vec2 velocity{0, 0};       // m/s
+    bool is_static = false;    // never moves (level geometry); segments and chains always are
+};
+
 // The non-player bodies spawned from the seed when the world is created.
 struct rock_config {
     uint32_t count = 0;
-    real min_radius = 1.0f;    // m
-    real max_radius = 3.0f;    // m
-    real max_speed = 5.0f;     // m/s, each velocity component uniform in [−max, max]
-    body_material material{};  // its radius is ignored: drawn in [min_radius, max_radius]
+    real min_radius = 1.0f;         // m
+    real max_radius = 3.0f;         // m
+    real max_speed = 5.0f;          // m/s, each velocity component uniform in [−max, max]
+    body_material material{};       // its radius is ignored: drawn in [min_radius, max_radius]
+    uint32_t polygon_vertices = 0;  // 0: circles; 3 to 8: irregular convex polygons within the drawn radius
 };
 
 struct world_config {
@@ -78,6 +104,7 @@ struct world_config {
     body_material player{};
     control_config control{};
     rock_config rocks{};
+    std::vector<body_config> bodies{};  // placed in order when the world is created
 };
 
 }  // namespace arena::world

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "server/world/integrate.hpp"
+#include "server/world/manifold.hpp"
+#include "server/world/splitmix64.hpp"
 
 namespace arena::world {
 
@@ -14,165 +15,177 @@ bool has_wall(const world_config& config, wall w) {
     return config.boundary == boundary::floor && w == wall::bottom;
 }
 
-// Distance from the body's surface to the wall (negative when crossing it), and the normal
-// pointing from the body into the wall.
-real wall_separation(const body& b, wall w, const world_config& config, vec2& normal) {
+// The wall as a half-space {x : normal·x ≥ offset}, normal pointing out of the world.
+void wall_plane(wall w, const world_config& config, vec2& normal, real& offset) {
     switch (w) {
         case wall::left:
             normal = {-1, 0};
-            return b.position.x() - b.radius;
+            offset = 0;
+            return;
         case wall::right:
             normal = {1, 0};
-            return config.size.x() - b.position.x() - b.radius;
+            offset = config.size.x();
+            return;
         case wall::bottom:
             normal = {0, -1};
-            return b.position.y() - b.radius;
+            offset = 0;
+            return;
         case wall::top:
-            normal = {0, 1};
-            return config.size.y() - b.position.y() - b.radius;
         case wall::none:
-            break;
+            normal = {0, 1};
+            offset = config.size.y();
+            return;
     }
-    return 0;
 }
 
-// Separation of two circles whose centres are `d` apart (from a to b), and the unit normal.
-real pair_separation(const vec2& d, real radius_a, real radius_b, vec2& normal) {
-    const real dist = std::sqrt(d.squaredNorm());
-    normal = dist > 0 ? vec2{d / dist} : vec2{1, 0};  // coincident centres: any fixed axis
-    return dist - radius_a - radius_b;
+real mix_friction(real a, real b) {
+    return std::sqrt(a * b);
 }
 
-// Current separation and normal of a contact, from the bodies' positions now.
-real measure(std::span<const body> bodies, const contact& c, const world_config& config, vec2& normal) {
-    const body& a = bodies[c.a];
-    if (c.with != wall::none) return wall_separation(a, c.with, config, normal);
-    const body& b = bodies[c.b];
-    return pair_separation(displacement(a.position, b.position, config), a.radius, b.radius, normal);
-}
-
-void prepare(std::span<const body> bodies, contact& c, const world_config& config) {
-    const body& a = bodies[c.a];
-    const bool wall_contact = c.with != wall::none;
-    const real inv_b = wall_contact ? 0.0f : bodies[c.b].inv_mass;
-    const real inv_sum = a.inv_mass + inv_b;
-    c.effective_mass = inv_sum > 0 ? 1.0f / inv_sum : 0.0f;
-    const vec2 vb = wall_contact ? vec2{0, 0} : bodies[c.b].velocity;
-    const real vn = (vb - a.velocity).dot(c.normal);
-    const real e = wall_contact ? a.restitution : std::max(a.restitution, bodies[c.b].restitution);
-    // A fast approach that reaches contact within this step bounces; otherwise a gap may close
-    // (speculative contact: approach at most separation/Δt) and an overlap may not grow.
-    const bool hits_this_step = c.separation + vn * config.dt < 0;
-    if (vn < -config.restitution_threshold && hits_this_step) {
-        c.bounce = -e * vn;
-    } else {
-        c.bounce = c.separation > 0 ? -c.separation / config.dt : 0.0f;
+// A contact from a manifold whose points are in the frame where a is at `pa` and b at `pb`.
+contact make_contact(uint32_t a, uint32_t b, const manifold& m, const vec2& pa, const vec2& pb) {
+    contact c;
+    c.a = a;
+    c.b = b;
+    c.count = m.count;
+    c.normal = m.normal;
+    c.separation = m.points[0].separation;
+    for (int k = 0; k < m.count; ++k) {
+        contact_point& p = c.points[k];
+        p.anchor_a = m.points[k].point - pa;
+        p.anchor_b = m.points[k].point - pb;
+        p.separation = m.points[k].separation;
+        p.id = m.points[k].id;
+        c.separation = std::min(c.separation, p.separation);
     }
+    return c;
+}
+
+// The shape of body b: its own, or a circle of its radius.
+const shape& shape_of(const body& b, std::span<const shape> pool, shape& circle) {
+    if (b.shape != no_shape) return pool[b.shape];
+    circle = make_circle(b.radius);
+    return circle;
+}
+
+transform transform_of(const body& b, uint32_t index, const vec2& position, const broadphase_scratch& s) {
+    if (b.shape == no_shape) return {position, 1, 0};
+    const cos_sin r = s.rotations[index];
+    return {position, r.c, r.s};
+}
+
+aabb box_of(const cell_proxy& p, real margin) {
+    const vec2 reach = p.half + vec2{margin, margin};
+    return {p.position - reach, p.position + reach};
 }
 
 }  // namespace
 
 void detect_contacts(std::span<const body> bodies, const world_config& config, broadphase_scratch& scratch,
                      std::vector<contact>& out) {
-    detect_contacts(bodies, make_grid(bodies, config), config, scratch, out);
+    std::vector<uint32_t> query_scratch;
+    detect_contacts({bodies, {}, nullptr}, make_grid(bodies, config), config, scratch, query_scratch, out);
 }
 
-void detect_contacts(std::span<const body> bodies, const grid& g, const world_config& config,
-                     broadphase_scratch& scratch, std::vector<contact>& out) {
+void detect_contacts(const collision_scene& scene, const grid& g, const world_config& config,
+                     broadphase_scratch& scratch, std::vector<uint32_t>& query_scratch, std::vector<contact>& out) {
     out.clear();
-    // The distance test reads the broadphase's proxies; only a contact reads the bodies. Inlined
+    const std::span<const body> bodies = scene.bodies;
+    const real spec = config.speculative_distance;
+    // The cheap tests read the broadphase's proxies; only a contact reads the bodies. Inlined
     // into both of the walk's loops: GCC left it a call, a tenth of a dense step.
-    for_each_candidate_pair(
-        bodies, g, scratch, [&](const cell_proxy& p, const cell_proxy& q) __attribute__((always_inline)) {
-            // The test is symmetric (negating a displacement and swapping a sum are exact), so only
-            // a contact puts the pair in index order: a choice per candidate was a mispredicted branch.
-            const real reach = p.radius + q.radius + config.speculative_distance;
-            if (displacement(p.position, q.position, config).squaredNorm() >= reach * reach) return;
-            const bool p_first = p.index < q.index;
-            const cell_proxy& pa = p_first ? p : q;
-            const cell_proxy& pb = p_first ? q : p;
-            if (bodies[pa.index].is_static() && bodies[pb.index].is_static()) return;
-            contact c;
-            c.a = pa.index;
-            c.b = pb.index;
-            c.separation =
-                pair_separation(displacement(pa.position, pb.position, config), pa.radius, pb.radius, c.normal);
-            prepare(bodies, c, config);
-            out.push_back(c);
-        });
-    if (config.boundary != boundary::walls && config.boundary != boundary::floor) return;
+    for_each_candidate_pair(bodies, g, scratch,
+                            [&](const cell_proxy& p, const cell_proxy& q) __attribute__((always_inline)) {
+                                // The tests are symmetric (negating a displacement and swapping a sum are exact), so
+                                // only a contact puts the pair in index order: a choice per candidate was a
+                                // mispredicted branch.
+                                const vec2 d = displacement(p.position, q.position, config);
+                                if (p.is_circle() && q.is_circle()) {
+                                    const real reach = p.radius + q.radius + spec;
+                                    if (d.squaredNorm() >= reach * reach) return;
+                                } else if (std::abs(d.x()) > p.half.x() + q.half.x() + spec ||
+                                           std::abs(d.y()) > p.half.y() + q.half.y() + spec) {
+                                    return;
+                                }
+                                const bool p_first = p.index < q.index;
+                                const uint32_t ia = p_first ? p.index : q.index;
+                                const uint32_t ib = p_first ? q.index : p.index;
+                                const body& a = bodies[ia];
+                                const body& b = bodies[ib];
+                                if (a.is_static() && b.is_static()) return;
+                                // b where a sees it: across the seam in a wrapping world.
+                                const vec2 pb = a.position + displacement(a.position, b.position, config);
+                                manifold m;
+                                if (p.is_circle() && q.is_circle()) {
+                                    m = collide_circles(a.position, a.radius, pb, b.radius, spec);
+                                } else {
+                                    shape circle_a, circle_b;
+                                    m = collide(
+                                        shape_of(a, scene.pool, circle_a), transform_of(a, ia, a.position, scratch),
+                                        shape_of(b, scene.pool, circle_b), transform_of(b, ib, pb, scratch), spec);
+                                }
+                                if (m.count == 0) return;
+                                contact c = make_contact(ia, ib, m, a.position, pb);
+                                c.friction = mix_friction(a.friction, b.friction);
+                                c.restitution = std::max(a.restitution, b.restitution);
+                                out.push_back(c);
+                            },
+                            {scene.pool, scene.statics != nullptr});
+    const bool walls = config.boundary == boundary::walls || config.boundary == boundary::floor;
+    const bool statics = scene.statics && !scene.statics->empty();
+    if (!walls && !statics) return;
     const bool four_walls = config.boundary == boundary::walls;
     for (uint32_t i = 0; i < bodies.size(); ++i) {
         const body& b = bodies[i];
         if (b.is_static()) continue;
-        // Most bodies are far from every wall: one test on the separations wall_separation
-        // gives (the same expressions) before the per-wall work.
-        const real spec = config.speculative_distance;
-        const bool far_from_floor = b.position.y() - b.radius >= spec;
-        const bool far_from_left = b.position.x() - b.radius >= spec;
-        const bool far_from_right = config.size.x() - b.position.x() - b.radius >= spec;
-        const bool far_from_top = config.size.y() - b.position.y() - b.radius >= spec;
+        const cell_proxy& proxy = scratch.unsorted[i];
+        if (statics) {
+            shape circle;
+            const shape* own = nullptr;
+            scene.statics->query(box_of(proxy, spec), query_scratch, [&](const static_index::entry& e) {
+                if (!own) own = &shape_of(b, scene.pool, circle);
+                shape other_circle;
+                const body& other = bodies[e.index];
+                const manifold m = collide(*own, transform_of(b, i, b.position, scratch),
+                                           shape_of(other, scene.pool, other_circle), e.xf, spec);
+                if (m.count == 0) return;
+                contact c = make_contact(i, e.index, m, b.position, other.position);
+                c.friction = mix_friction(b.friction, other.friction);
+                c.restitution = std::max(b.restitution, other.restitution);
+                out.push_back(c);
+            });
+        }
+        if (!walls) continue;
+        // Most bodies are far from every wall: one test on the bounding box before the per-wall
+        // work.
+        const vec2 lo = proxy.position - proxy.half, hi = proxy.position + proxy.half;
+        const bool far_from_floor = lo.y() >= spec;
+        const bool far_from_left = lo.x() >= spec;
+        const bool far_from_right = config.size.x() - hi.x() >= spec;
+        const bool far_from_top = config.size.y() - hi.y() >= spec;
         const bool far_from_walls = !four_walls || (far_from_left & far_from_right & far_from_top);
         if (far_from_floor & far_from_walls) continue;
+        shape circle;
+        const shape& own = shape_of(b, scene.pool, circle);
+        const transform xf = transform_of(b, i, b.position, scratch);
         for (wall w : {wall::left, wall::right, wall::bottom, wall::top}) {
             if (!has_wall(config, w)) continue;
-            contact c;
-            c.a = i;
+            vec2 normal{0, 0};
+            real offset = 0;
+            wall_plane(w, config, normal, offset);
+            const manifold m = collide_wall(own, xf, normal, offset, spec);
+            if (m.count == 0) continue;
+            contact c = make_contact(i, i, m, b.position, b.position);
             c.with = w;
-            c.separation = wall_separation(bodies[i], w, config, c.normal);
-            if (c.separation >= config.speculative_distance) continue;
-            prepare(bodies, c, config);
+            // The lecture's floor model (forces.hpp) already gives a circle its floor friction.
+            c.friction = b.shape == no_shape ? 0.0f : mix_friction(b.friction, config.floor_friction);
+            c.restitution = b.restitution;
             out.push_back(c);
         }
     }
 }
 
-void solve_contact_velocities(std::span<body> bodies, std::span<contact> contacts, const world_config& config) {
-    // Warm start: last step's impulse of the same contact is the best first guess, so that
-    // stacks converge in a few iterations instead of sinking.
-    for (const contact& c : contacts) {
-        if (c.impulse == 0 || c.effective_mass == 0) continue;
-        const vec2 p = c.normal * c.impulse;
-        bodies[c.a].velocity -= p * bodies[c.a].inv_mass;
-        if (c.with == wall::none) bodies[c.b].velocity += p * bodies[c.b].inv_mass;
-    }
-    for (uint32_t iteration = 0; iteration < config.velocity_iterations; ++iteration) {
-        for (contact& c : contacts) {
-            if (c.effective_mass == 0) continue;
-            body& a = bodies[c.a];
-            body* b = c.with == wall::none ? &bodies[c.b] : nullptr;
-            const vec2 vb = b ? b->velocity : vec2{0, 0};
-            const real vn = (vb - a.velocity).dot(c.normal);
-            const real total = std::max(c.impulse + c.effective_mass * (c.bounce - vn), 0.0f);
-            const real delta = total - c.impulse;
-            c.impulse = total;
-            const vec2 p = c.normal * delta;
-            a.velocity -= p * a.inv_mass;
-            if (b) b->velocity += p * b->inv_mass;
-        }
-    }
-}
-
-void correct_penetration(std::span<body> bodies, std::span<const contact> contacts, const world_config& config) {
-    for (uint32_t iteration = 0; iteration < config.position_iterations; ++iteration) {
-        for (const contact& c : contacts) {
-            if (c.effective_mass == 0) continue;
-            vec2 normal{0, 0};
-            const real separation = measure(bodies, c, config, normal);
-            if (separation >= -config.penetration_slop) continue;
-            const real push =
-                std::min(config.correction_fraction * (-separation - config.penetration_slop), config.max_correction);
-            const vec2 p = normal * (push * c.effective_mass);
-            body& a = bodies[c.a];
-            a.position -= p * a.inv_mass;
-            if (c.with == wall::none) bodies[c.b].position += p * bodies[c.b].inv_mass;
-        }
-    }
-}
-
-}  // namespace arena::world
-
-namespace arena::world {
+namespace {
 
 uint64_t contact_key(std::span<const body> bodies, const contact& c) {
     const uint64_t a = bodies[c.a].id;
@@ -180,21 +193,67 @@ uint64_t contact_key(std::span<const body> bodies, const contact& c) {
     return a << 32 | b;
 }
 
+}  // namespace
+
+namespace {
+
+// The table's hash of a key: one splitmix64 step, the code base's one mixer.
+uint64_t mix(uint64_t key) {
+    return splitmix64(key).next();
+}
+
+}  // namespace
+
+const impulse_cache::entry* impulse_cache::find(uint64_t key) const {
+    if (table_.empty()) return nullptr;
+    const size_t mask = table_.size() - 1;
+    for (size_t at = mix(key) & mask;; at = (at + 1) & mask) {
+        const uint32_t k = table_[at];
+        if (k == 0) return nullptr;
+        if (entries_[k - 1].key == key) return &entries_[k - 1];
+    }
+}
+
 void impulse_cache::load(std::span<const body> bodies, std::span<contact> contacts) const {
     for (contact& c : contacts) {
-        const uint64_t key = contact_key(bodies, c);
-        auto at = std::lower_bound(entries_.begin(), entries_.end(), key,
-                                   [](const entry& e, uint64_t k) { return e.key < k; });
-        c.impulse = (at != entries_.end() && at->key == key) ? at->impulse : 0.0f;
+        const entry* e = find(contact_key(bodies, c));
+        for (int k = 0; k < c.count; ++k) {
+            contact_point& p = c.points[k];
+            p.normal_impulse = 0;
+            p.tangent_impulse = 0;
+            if (!e) continue;
+            for (int j = 0; j < e->count; ++j) {
+                if (e->id[j] != p.id) continue;
+                p.normal_impulse = e->normal[j];
+                p.tangent_impulse = e->tangent[j];
+            }
+        }
     }
 }
 
 void impulse_cache::store(std::span<const body> bodies, std::span<const contact> contacts) {
     entries_.clear();
-    for (const contact& c : contacts)
-        if (c.impulse > 0) entries_.push_back({contact_key(bodies, c), c.impulse});
-    // Keys are unique (one contact per pair or body and wall), so this order is total.
-    std::sort(entries_.begin(), entries_.end(), [](const entry& l, const entry& r) { return l.key < r.key; });
+    for (const contact& c : contacts) {
+        entry e{contact_key(bodies, c), {0, 0}, c.count, {0, 0}, {0, 0}};
+        bool any = false;
+        for (int k = 0; k < c.count; ++k) {
+            e.id[k] = c.points[k].id;
+            e.normal[k] = c.points[k].normal_impulse;
+            e.tangent[k] = c.points[k].tangent_impulse;
+            any = any || e.normal[k] != 0 || e.tangent[k] != 0;
+        }
+        if (any) entries_.push_back(e);
+    }
+    // Keys are unique (one contact per pair or body and wall): each finds its own entry.
+    size_t size = 16;
+    while (size < 2 * entries_.size()) size *= 2;
+    table_.assign(size, 0);
+    const size_t mask = size - 1;
+    for (uint32_t k = 0; k < entries_.size(); ++k) {
+        size_t at = mix(entries_[k].key) & mask;
+        while (table_[at] != 0) at = (at + 1) & mask;
+        table_[at] = k + 1;
+    }
 }
 
 }  // namespace arena::world

@@ -56,10 +56,12 @@ inline real medium_density(const world_config& config, const vec2& position) {
     return config.air_density;
 }
 
-// True when `b` rests on or touches the floor (within the penetration slop).
+// True when `b`, a circle, rests on or touches the floor (within the penetration slop). The
+// lecture's floor model is for circles (players, balls); other shapes meet the floor through
+// contacts with friction (contacts.hpp).
 inline bool touches_floor(const body& b, const world_config& config) {
     if (config.boundary != boundary::walls && config.boundary != boundary::floor) return false;
-    return b.position.y() - b.radius <= config.penetration_slop;
+    return b.shape == no_shape && b.position.y() - b.radius <= config.penetration_slop;
 }
 
 // Every force of the environment on `b` for this step, in this order: weight, the floor's

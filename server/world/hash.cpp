@@ -9,6 +9,7 @@ void add_material(fnv1a& h, const body_material& m) {
     h.add_real(m.mass);
     h.add_real(m.radius);
     h.add_real(m.restitution);
+    h.add_real(m.friction);
     h.add_real(m.drag_area);
     h.add_u8(m.fixed_rotation);
 }
@@ -52,6 +53,22 @@ uint64_t config_hash(const world_config& c) {
     h.add_real(c.rocks.max_radius);
     h.add_real(c.rocks.max_speed);
     add_material(h, c.rocks.material);
+    h.add_u32(c.rocks.polygon_vertices);
+    h.add_u32(static_cast<uint32_t>(c.bodies.size()));
+    for (const body_config& b : c.bodies) {
+        h.add_u8(static_cast<uint8_t>(b.shape.type));
+        h.add_real(b.shape.radius);
+        h.add_real(b.shape.rounding);
+        h.add_vec2(b.shape.half_extents);
+        h.add_real(b.shape.half_length);
+        h.add_u32(static_cast<uint32_t>(b.shape.points.size()));
+        for (const vec2& p : b.shape.points) h.add_vec2(p);
+        add_material(h, b.material);
+        h.add_vec2(b.position);
+        h.add_real(b.angle);
+        h.add_vec2(b.velocity);
+        h.add_u8(b.is_static);
+    }
     return h.value();
 }
 

@@ -24,6 +24,7 @@ world_config asteroids_preset() {
     c.rocks.max_radius = 6;
     c.rocks.max_speed = 6;
     c.rocks.material = {.density = 1, .mass = 0, .radius = 1, .restitution = 0.8f, .drag_area = 0.02f};
+    c.rocks.polygon_vertices = 7;  // irregular heptagons, like the arcade game's rocks
     return c;
 }
 
@@ -52,17 +53,77 @@ world_config platformer_preset() {
     c.rocks.max_radius = 1.0f;
     c.rocks.max_speed = 3;
     c.rocks.material = {.density = 20, .mass = 0, .radius = 1, .restitution = 0.3f, .drag_area = 0.3f};
+    // Level geometry: a ramp from the floor up to the first platform, two more platforms.
+    auto platform = [](vec2 centre, real half_width) {
+        body_config b;
+        b.shape.type = shape_type::box;
+        b.shape.half_extents = {half_width, 0.25f};
+        b.position = centre;
+        b.is_static = true;
+        return b;
+    };
+    c.bodies.push_back(platform({22, 4}, 4));  // top at y = 4.25, x in [18, 26]
+    c.bodies.push_back(platform({36, 7}, 3));
+    c.bodies.push_back(platform({48, 10}, 4));
+    body_config ramp;
+    ramp.shape.type = shape_type::segment;
+    ramp.shape.points = {{10, 0}, {18, 4.25f}};  // about 28°
+    c.bodies.push_back(ramp);
+    // Crates: 1 m boxes of 20 kg (a runner's 1000 N pushes one against μ·m·g ≈ 120 N), one
+    // alone and a stack of four.
+    auto crate = [](vec2 centre) {
+        body_config b;
+        b.shape.type = shape_type::box;
+        b.shape.half_extents = {0.5f, 0.5f};
+        b.material = {.density = 20, .mass = 0, .radius = 1, .restitution = 0.1f, .friction = 0.6f, .drag_area = 0.3f};
+        b.position = centre;
+        return b;
+    };
+    c.bodies.push_back(crate({30, 0.5f}));
+    for (int level = 0; level < 4; ++level) c.bodies.push_back(crate({42, 0.5f + static_cast<real>(level)}));
+    return c;
+}
+
+world_config pyramid_preset(uint32_t base) {
+    world_config c;
+    c.boundary = boundary::open;
+    c.gravity = {0, -10};
+    c.air_density = 0;
+    c.size = {2.0f * static_cast<real>(base) + 20, static_cast<real>(base) + 10};
+    c.max_bodies = base * (base + 1) / 2 + 16;
+    c.rocks.count = 0;
+    c.player = {.density = 1, .mass = 0, .radius = 0.5f, .restitution = 0, .drag_area = 0};
+    body_config ground;
+    ground.shape.type = shape_type::segment;
+    const real half = static_cast<real>(base) + 10;
+    ground.shape.points = {{-half, 0}, {half, 0}};
+    ground.position = {c.size.x() * 0.5f, 0};
+    c.bodies.push_back(ground);
+    // Row i (from 0 at the bottom) holds base − i boxes, centred, 1 m apart, resting on row i − 1.
+    for (uint32_t i = 0; i < base; ++i) {
+        for (uint32_t j = i; j < base; ++j) {
+            body_config box;
+            box.shape.type = shape_type::box;
+            box.shape.half_extents = {0.5f, 0.5f};
+            box.material = {.density = 1, .mass = 0, .radius = 1, .restitution = 0, .friction = 0.6f, .drag_area = 0};
+            const real x =
+                static_cast<real>(i) * 0.5f + static_cast<real>(j - i) - 0.5f * static_cast<real>(base) + 0.5f;
+            box.position = {c.size.x() * 0.5f + x, 0.5f + static_cast<real>(i)};
+            c.bodies.push_back(box);
+        }
+    }
     return c;
 }
 
 std::optional<world_config> preset_by_name(std::string_view name) {
     if (name == "asteroids") return asteroids_preset();
     if (name == "platformer") return platformer_preset();
+    if (name == "pyramid") return pyramid_preset();
     return std::nullopt;
 }
 
 std::vector<std::string_view> preset_names() {
-    return {"asteroids", "platformer"};
+    return {"asteroids", "platformer", "pyramid"};
 }
 
 }  // namespace arena::world

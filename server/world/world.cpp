@@ -6,6 +6,7 @@
 #include "server/world/hash.hpp"
 #include "server/world/integrate.hpp"
 #include "server/world/spawn_grid.hpp"
+#include "server/world/trig.hpp"
 
 namespace arena::world {
 
@@ -18,7 +19,39 @@ bool less_by_id(const body& b, uint32_t id) {
 }  // namespace
 
 world::world(const world_config& config, uint64_t seed) : config_(config), rng_(seed) {
+    place_bodies();
     spawn_rocks();
+}
+
+// A config that passed the config checks makes every body; one that did not (a program that
+// built a bad config) loses the bodies whose shapes cannot be made, rather than the process.
+void world::place_bodies() {
+    for (const body_config& bc : config_.bodies) {
+        if (bc.shape.type == shape_type::chain) {
+            std::vector<vec2> points;
+            const cos_sin r = compute_cos_sin(bc.angle);
+            for (const vec2& p : bc.shape.points)
+                points.push_back(bc.position + vec2{r.c * p.x() - r.s * p.y(), r.s * p.x() + r.c * p.y()});
+            add_chain(points, bc.material);
+            continue;
+        }
+        std::string error;
+        vec2 centre{0, 0};
+        const std::optional<shape> s = make_shape(bc.shape, error, centre);
+        if (!s) continue;
+        body_material material = bc.material;
+        const bool is_static = bc.is_static || bc.shape.type == shape_type::segment;
+        if (is_static) {
+            material.density = 0;
+            material.mass = 0;
+        }
+        const cos_sin r = compute_cos_sin(bc.angle);
+        const vec2 at = bc.position + vec2{r.c * centre.x() - r.s * centre.y(), r.s * centre.x() + r.c * centre.y()};
+        body b = make_body(material, *s, at);
+        b.angle = wrap_angle(bc.angle);
+        if (!is_static) b.velocity = bc.velocity;
+        if (!add_body(b, *s)) return;
+    }
 }
 
 void world::step(const tick_inputs& inputs) {
@@ -26,11 +59,12 @@ void world::step(const tick_inputs& inputs) {
     const body_extent extent = integrate_velocities();
     detect_collisions(extent);
     impulses_.load(bodies_, contacts_);
-    solve_contact_velocities(bodies_, contacts_, config_);
+    solver_.solve_velocities(bodies_, contacts_, config_);
     impulses_.store(bodies_, contacts_);
     integrate_positions();
-    correct_penetration(bodies_, contacts_, config_);
+    solver_.correct_positions(bodies_, contacts_, config_);
     wrap_touched_bodies();
+    note_supported();
     ++tick_;
 }
 
@@ -59,13 +93,18 @@ body_extent world::integrate_velocities() {
         accumulate_forces(b, config_);
         if (config_.integrator == integrator::explicit_euler) integrate_position(b, dt);  // old velocity
         integrate_velocity(b, dt);
-        extent.add(b);
+        if (!b.is_static()) extent.add(b);
     }
     return extent;
 }
 
 void world::detect_collisions(const body_extent& extent) {
-    detect_contacts(bodies_, make_grid(extent, bodies_.size(), config_), config_, scratch_, contacts_);
+    if (statics_dirty_) {
+        statics_.build(bodies_, shapes_);
+        statics_dirty_ = false;
+    }
+    detect_contacts({bodies_, shapes_, &statics_}, make_grid(extent, bodies_.size(), config_), config_, scratch_,
+                    query_scratch_, contacts_);
     if (config_.boundary != boundary::wrap) return;
     // Bodies in a contact may still be pushed by correct_penetration: they wrap after it.
     touched_.assign(bodies_.size(), 0);
@@ -101,7 +140,27 @@ void world::wrap_touched_bodies() {
 }
 
 bool world::on_ground(const body& b) const {
-    return touches_floor(b, config_);
+    return touches_floor(b, config_) || std::binary_search(supported_.begin(), supported_.end(), b.id);
+}
+
+// A body stands on what it touches below it: a contact whose normal points down from it by more
+// than 45° (cos 45° ≈ 0.707), at most the slop apart. Only bodies with an owner are listed:
+// jumping needs it, nothing else does.
+void world::note_supported() {
+    supported_.clear();
+    const real down = -0.70710678f;
+    for (const contact& c : contacts_) {
+        if (c.separation > config_.penetration_slop) continue;
+        if (c.normal.y() < down && bodies_[c.a].owner != 0) supported_.push_back(bodies_[c.a].id);
+        if (c.with == wall::none && -c.normal.y() < down && bodies_[c.b].owner != 0)
+            supported_.push_back(bodies_[c.b].id);
+    }
+    // Ids are integers: sorting them is a total order.
+    std::sort(supported_.begin(), supported_.end());
+}
+
+shape world::shape_of(const body& b) const {
+    return b.shape == no_shape ? make_circle(b.radius) : shapes_[b.shape];
 }
 
 std::optional<uint32_t> world::add_body(body b) {
@@ -114,7 +173,48 @@ std::optional<uint32_t> world::add_body(body b) {
     next_id_ = std::max(next_id_, b.id + 1);
     auto at = std::lower_bound(bodies_.begin(), bodies_.end(), b.id, less_by_id);
     bodies_.insert(at, b);
+    statics_dirty_ = true;  // indices moved
     return b.id;
+}
+
+std::optional<uint32_t> world::add_body(body b, const shape& s) {
+    if (s.kind == shape_kind::circle) {
+        b.radius = s.radius;
+        b.shape = no_shape;
+        return add_body(b);
+    }
+    if (bodies_.size() >= config_.max_bodies) return std::nullopt;
+    if (b.id != 0 && find(b.id)) return std::nullopt;
+    if (free_shapes_.empty()) {
+        b.shape = static_cast<uint32_t>(shapes_.size());
+        shapes_.push_back(s);
+    } else {
+        b.shape = free_shapes_.back();
+        free_shapes_.pop_back();
+        shapes_[b.shape] = s;
+    }
+    b.radius = bounding_radius(s);
+    return add_body(b);
+}
+
+std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> points, const body_material& material) {
+    std::vector<uint32_t> ids;
+    for (size_t k = 0; k + 1 < points.size(); ++k) {
+        const vec2 mid = (points[k] + points[k + 1]) * 0.5f;
+        body b;
+        b.mass = 0;
+        b.inv_mass = 0;
+        b.inertia = 0;
+        b.inv_inertia = 0;
+        b.restitution = material.restitution;
+        b.friction = material.friction;
+        b.drag_area = 0;
+        b.position = mid;
+        const std::optional<uint32_t> id = add_body(b, make_segment(points[k] - mid, points[k + 1] - mid));
+        if (!id) return std::nullopt;
+        ids.push_back(*id);
+    }
+    return ids;
 }
 
 std::optional<uint32_t> world::spawn_player(uint32_t owner) {
@@ -152,13 +252,22 @@ void world::remove_bodies(std::span<const uint32_t> ids) {
     if (ids.empty()) return;
     std::vector<uint32_t> sorted(ids.begin(), ids.end());
     std::sort(sorted.begin(), sorted.end());
-    std::erase_if(bodies_, [&sorted](const body& b) { return std::binary_search(sorted.begin(), sorted.end(), b.id); });
+    auto removed = [&sorted](const body& b) {
+        return std::binary_search(sorted.begin(), sorted.end(), b.id);
+    };
+    // Their shapes back to the pool, in id order (the pool's reuse order is part of the state).
+    for (const body& b : bodies_)
+        if (b.shape != no_shape && removed(b)) free_shapes_.push_back(b.shape);
+    std::erase_if(bodies_, removed);
+    statics_dirty_ = true;  // indices moved
 }
 
 bool world::remove_body(uint32_t id) {
     auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id, less_by_id);
     if (at == bodies_.end() || at->id != id) return false;
+    if (at->shape != no_shape) free_shapes_.push_back(at->shape);
     bodies_.erase(at);
+    statics_dirty_ = true;  // indices moved
     return true;
 }
 
@@ -184,7 +293,17 @@ void world::spawn_rocks() {
         cy = std::clamp(static_cast<int>(p.y() / config_.size.y() * static_cast<real>(ny)), 0, ny - 1);
     };
     std::vector<body> placed;
+    std::vector<shape> placed_shapes;  // polygon rocks: placed[k].shape indexes this until they join
+    // The config's bodies (platforms, crates: few) by their bounding boxes, then the rocks so far.
+    std::vector<aabb> fixed;
+    for (const body& b : bodies_) {
+        const cos_sin r = compute_cos_sin(b.angle);
+        fixed.push_back(compute_aabb(shape_of(b), b.position, r.c, r.s));
+    }
     auto is_free = [&](const vec2& p, real radius) {
+        const aabb own{p - vec2{radius, radius}, p + vec2{radius, radius}};
+        for (const aabb& box : fixed)
+            if (overlaps(box, own)) return false;
         int cx, cy;
         cell_of(p, cx, cy);
         for (int dy = -1; dy <= 1; ++dy) {
@@ -208,6 +327,19 @@ void world::spawn_rocks() {
         const real vx = rng_.uniform(-rocks.max_speed, rocks.max_speed);
         const real vy = rng_.uniform(-rocks.max_speed, rocks.max_speed);
         b.velocity = {vx, vy};
+        if (rocks.polygon_vertices >= 3) {
+            const std::optional<shape> rock = irregular_polygon(material.radius);
+            if (rock) {
+                const body shaped = make_body(material, *rock, b.position);
+                b.mass = shaped.mass;
+                b.inv_mass = shaped.inv_mass;
+                b.inertia = shaped.inertia;
+                b.inv_inertia = shaped.inv_inertia;
+                b.radius = shaped.radius;
+                b.shape = static_cast<uint32_t>(placed_shapes.size());
+                placed_shapes.push_back(*rock);
+            }
+        }
         int cx, cy;
         cell_of(b.position, cx, cy);
         cells[static_cast<size_t>(cy) * nx + cx].push_back(static_cast<uint32_t>(placed.size()));
@@ -216,8 +348,28 @@ void world::spawn_rocks() {
     // Rocks are created first and in order, so appending keeps bodies_ sorted by id.
     for (body& b : placed) {
         b.id = next_id_++;
+        if (b.shape != no_shape) {
+            const shape s = placed_shapes[b.shape];
+            b.shape = static_cast<uint32_t>(shapes_.size());
+            shapes_.push_back(s);
+        }
         bodies_.push_back(b);
     }
+    statics_dirty_ = true;
+}
+
+// An arcade rock: `polygon_vertices` corners at evenly spaced angles, each at a distance drawn
+// in [0.6, 1]·radius, so that it fits in the radius the spawn checked. One draw per corner, in
+// order; the hull of the corners (a dent would make it concave), centred on its centroid.
+std::optional<shape> world::irregular_polygon(real radius) {
+    const uint32_t n = std::min<uint32_t>(config_.rocks.polygon_vertices, max_polygon_vertices);
+    std::vector<vec2> corners;
+    for (uint32_t k = 0; k < n; ++k) {
+        const real distance = radius * rng_.uniform(0.6f, 1.0f);
+        const cos_sin at = compute_cos_sin(2 * pi * static_cast<real>(k) / static_cast<real>(n));
+        corners.push_back(vec2{at.c, at.s} * distance);
+    }
+    return make_polygon(corners).polygon;
 }
 
 template <class IsFree>
@@ -248,6 +400,8 @@ uint64_t world::hash() const {
         h.add_real(b.inv_inertia);
         h.add_real(b.radius);
         h.add_real(b.restitution);
+        h.add_real(b.friction);
+        h.add_u8(static_cast<uint8_t>(b.shape == no_shape ? shape_kind::circle : shapes_[b.shape].kind));
         h.add_real(b.drag_area);
         h.add_vec2(b.position);
         h.add_vec2(b.velocity);

@@ -11,12 +11,16 @@
 #include "server/world/contacts.hpp"
 #include "server/world/input.hpp"
 #include "server/world/rng.hpp"
+#include "server/world/shape.hpp"
+#include "server/world/solver.hpp"
+#include "server/world/static_index.hpp"
 
 namespace arena::world {
 
 // Version of the world's physics: bump when a change alters results on purpose, so that
 // recordings and clients from another version are recognised.
-inline constexpr uint32_t world_version = 1;
+// 2: shapes (capsules, polygons, segments), contact friction and rotation at contacts.
+inline constexpr uint32_t world_version = 2;
 
 class world {
 public:
@@ -26,6 +30,12 @@ public:
     // Adds a body; its id is assigned when b.id == 0, else b.id is used (it must be unused).
     // Returns the id, or nothing when the world is full or the id is taken.
     std::optional<uint32_t> add_body(body b);
+    // The same for a body of shape `s` (make_body(material, s, position) gives its mass). A
+    // body with zero inverse mass is static: level geometry, kept out of the moving bodies' grid.
+    std::optional<uint32_t> add_body(body b, const shape& s);
+    // A chain of static segments through `points` (one body each), made of `material`'s
+    // friction and restitution. Returns the ids, or nothing when the world is full.
+    std::optional<std::vector<uint32_t>> add_chain(std::span<const vec2> points, const body_material& material);
     // A player's body of the config's player material at a free spot drawn from the world's rng.
     std::optional<uint32_t> spawn_player(uint32_t owner);
     // spawn_player for each owner in order, with the same results, in O(bodies + owners) tests
@@ -40,6 +50,8 @@ public:
     const body* find(uint32_t id) const;
     std::span<const body> bodies() const { return bodies_; }
     std::span<body> bodies() { return bodies_; }
+    // The shape of `b` (one of this world's bodies): its own, or a circle of its radius.
+    shape shape_of(const body& b) const;
 
     // Advances one fixed Δt. Inputs must have passed check_input (they are clamped here);
     // inputs for unknown bodies are ignored.
@@ -52,7 +64,7 @@ public:
     const world_config& config() const { return config_; }
     // Contacts found in the last step (for tests and tools).
     std::span<const contact> last_contacts() const { return contacts_; }
-    // True when `b` rests on or touches the floor.
+    // True when `b` rests on or touches the floor, or stood on another body in the last step.
     bool on_ground(const body& b) const;
 
 private:
@@ -61,7 +73,10 @@ private:
     void detect_collisions(const body_extent& extent);
     void integrate_positions();  // positions, clearing, wrapping of bodies in no contact
     void wrap_touched_bodies();  // wrapping of the bodies in contacts
+    void place_bodies();         // the config's bodies
     void spawn_rocks();
+    std::optional<shape> irregular_polygon(real radius);
+    void note_supported();  // the bodies with an owner that stand on something, for on_ground
     // A spot in [r, size − r]² that overlaps nobody `is_free` knows of (a few tries; a crowded
     // world takes the last try).
     template <class IsFree>
@@ -69,13 +84,20 @@ private:
 
     world_config config_;
     rng rng_;
-    std::vector<body> bodies_;  // sorted by id
+    std::vector<body> bodies_;           // sorted by id
+    std::vector<shape> shapes_;          // the pool body::shape indexes
+    std::vector<uint32_t> free_shapes_;  // pool entries of removed bodies, reused last-in first-out
     uint32_t next_id_ = 1;
     uint32_t tick_ = 0;
     std::vector<contact> contacts_;
     broadphase_scratch scratch_;
     std::vector<uint8_t> touched_;  // body index → in a contact this step (wrap worlds only)
     impulse_cache impulses_;
+    contact_solver solver_;
+    static_index statics_;
+    bool statics_dirty_ = true;  // bodies added or removed since statics_ was built
+    std::vector<uint32_t> query_scratch_;
+    std::vector<uint32_t> supported_;  // ids, increasing (see note_supported)
 };
 
 }  // namespace arena::world

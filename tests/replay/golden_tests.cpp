@@ -13,7 +13,7 @@ using namespace arena::replay;
 
 namespace {
 
-constexpr uint64_t golden_final_hash = 0x597b9628eb1b9a11ULL;
+constexpr uint64_t golden_final_hash = 0x308927a346773945ULL;
 constexpr uint32_t golden_ticks = 600;
 
 std::vector<std::pair<uint32_t, uint64_t>> replay_hashes(const std::string& path, replay_report& report) {
@@ -53,4 +53,14 @@ TEST_CASE("replaying the same recording twice gives identical hashes at every ti
     REQUIRE(first.size() == golden_ticks + 1);
     CHECK(first == second);
     CHECK(first.back().second == golden_final_hash);
+}
+
+// The golden recording as world version 1 wrote it (circles only, frictionless contacts),
+// kept to prove that a recording of other physics is refused, not replayed into mismatches.
+TEST_CASE("a world version 1 recording is refused with a message naming both versions", "[replay][golden]") {
+    auto opened = replayer::open(std::string(ARENA_TEST_DATA_DIR) + "/golden_asteroids_world_v1.arpl");
+    REQUIRE_FALSE(opened.ok());
+    INFO(opened.error);
+    CHECK(opened.error.find("recorded with world version 1") != std::string::npos);
+    CHECK(opened.error.find("this build simulates world version 2") != std::string::npos);
 }

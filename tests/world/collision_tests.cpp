@@ -15,11 +15,14 @@ world_config space(real restitution_threshold = 1.0f) {
     return c;
 }
 
+// Frictionless, so that an off-centre impact spins nothing and the translational energy and
+// momentum are the whole story (friction has its own tests: friction_tests.cpp).
 uint32_t add_ball(world& w, real radius, real mass, vec2 p, vec2 v, real restitution) {
     body_material m;
     m.mass = mass;
     m.radius = radius;
     m.restitution = restitution;
+    m.friction = 0;
     body b = make_body(m, p);
     b.velocity = v;
     return *w.add_body(b);

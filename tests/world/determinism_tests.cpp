@@ -74,6 +74,6 @@ TEST_CASE("golden hash after 600 ticks of the fixed scenes", "[world][determinis
     const uint64_t asteroids = run_scene(asteroids_preset(), 2026, 600);
     const uint64_t platformer = run_scene(platformer_preset(), 2026, 600);
     INFO("asteroids " << std::hex << asteroids << " platformer " << platformer);
-    CHECK(asteroids == 0x69be93e649f68f15ULL);
-    CHECK(platformer == 0x336da6284e27fff4ULL);
+    CHECK(asteroids == 0xeb06cd3b46b28dcfULL);
+    CHECK(platformer == 0x534c95caea0ac62dULL);
 }
