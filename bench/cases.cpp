@@ -35,6 +35,10 @@ world::world_config scaled_asteroids(uint32_t bodies) {
         config.size *= scale;
     }
     config.rocks.count = bodies;
+    // The scene these figures have always measured: circle rocks, frictionless (world version 1
+    // had no contact friction), so that a change of speed is the code's, not the scene's.
+    config.rocks.polygon_vertices = 0;
+    config.rocks.material.friction = 0;
     return config;
 }
 

@@ -42,6 +42,14 @@ for ((k = 1; k < runs; ++k)); do
   "${pin[@]}" "$bin/arena-bench" "${quick[@]}" --only step,integrate >>"$out/arena.jsonl"
 done
 
+# Box2D's pyramid scenes against Box2D 2.4.1, in one process.
+if [[ -x $bin/arena-bench-pyramids ]]; then
+  echo "bench: pyramids, Arena and Box2D 2.4.1 alternating..." >&2
+  "${pin[@]}" "$bin/arena-bench-pyramids" "${quick[@]}" >>"$out/arena.jsonl"
+else
+  notes+=("Pyramids skipped: $bin/arena-bench-pyramids was not built (apt-get install libbox2d-dev, then reconfigure).")
+fi
+
 # Our world on Box2D's scene, interleaved with Box2D 2.4.1 by their run_all.py.
 if [[ ! -f $peer/run_all.py || ! -f $peer/bench_scene.hpp ]]; then
   notes+=("Box2D comparison skipped: $peer not found.")

@@ -62,6 +62,33 @@ def bandwidth_table(rows):
             codec, r["bytes_per_client_per_s"], ratio, r["tick_ms_median"], r["tick_ms_p99"], r["errors"]))
 
 
+def pyramid_table(rows):
+    """Box2D's pyramid scenes, Arena and Box2D 2.4.1 in one process (arena-bench-pyramids)."""
+    pyr = [r for r in rows if r["bench"] == "pyramids"]
+    if not pyr:
+        return
+    print()
+    print("Pyramids: 1 m boxes, μ 0.6, Δt 1/60 s, 8 velocity + 3 position iterations, Box2D sleeping off;")
+    print("CPU ms per step (the thread's CPU time, best of the runs), engines alternating in one process.")
+    print()
+    print("| scene | boxes | Arena ms/step | Box2D 2.4.1 ms/step | Arena / Box2D | standing (Arena, Box2D) | target |")
+    print("|---|---:|---:|---:|---:|---|---|")
+    scenes = []
+    for r in pyr:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    for name in scenes:
+        ours = next((r for r in pyr if r["scene"] == name and r["engine"] == "arena"), None)
+        theirs = next((r for r in pyr if r["scene"] == name and r["engine"] != "arena"), None)
+        if not ours or not theirs:
+            continue
+        ratio = ours["cpu_ms_per_step"] / theirs["cpu_ms_per_step"]
+        target = "≤ 0.5×: " + ok(ratio <= 0.5 and ours["standing"]) if name == "large_pyramid" else ""
+        print("| %s | %d | %.3f | %.3f | %.2f× | %s, %s | %s |" % (
+            name, ours["boxes"], ours["cpu_ms_per_step"], theirs["cpu_ms_per_step"], ratio,
+            "yes" if ours["standing"] else "**fell**", "yes" if theirs["standing"] else "**fell**", target))
+
+
 def best_runs(rows):
     """run.sh repeats the step and integration cases: keep, per case and N, the run with the best
     median (the same policy as the Box2D scene's best of R), in first-seen order, with the count."""
@@ -158,6 +185,7 @@ def main(argv):
                 best["ms_per_step_median"], best["ms_per_step_p90"], ratio))
     print("\n".join(out))
     bandwidth_table(rows)
+    pyramid_table(rows)
     for note in notes:
         print()
         print(note)
