@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "protocol/verify.hpp"
+#include "tests/common/descriptors.hpp"
 
 namespace arena::test {
 
@@ -29,8 +30,7 @@ server_process::server_process(const std::vector<std::string>& args) {
     if (pid_ == 0) {
         ::dup2(out_pipe[1], 1);
         ::dup2(err_pipe[1], 2);
-        ::close(out_pipe[0]);
-        ::close(err_pipe[0]);
+        close_inherited_descriptors();  // the server's descriptor budget is its own
         std::vector<char*> argv;
         for (auto& a : all) argv.push_back(a.data());
         argv.push_back(nullptr);

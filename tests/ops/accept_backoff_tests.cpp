@@ -12,6 +12,7 @@
 
 #include "server/ops/accept_backoff.hpp"
 #include "server/ops/http_server.hpp"
+#include "tests/common/descriptors.hpp"
 #include "tests/ops/loopback.hpp"
 
 using namespace arena::ops;
@@ -67,8 +68,7 @@ TEST_CASE("ops http: out of file descriptors, the endpoint pauses its accepts in
     const pid_t child = fork();
     REQUIRE(child >= 0);
     if (child == 0) {
-        close(ports[0]);
-        close(results[0]);
+        arena::test::close_inherited_descriptors({ports[1], results[1]});
         rlimit limit{64, 64};
         if (setrlimit(RLIMIT_NOFILE, &limit) != 0) _exit(3);
         uint64_t lines = 0;
