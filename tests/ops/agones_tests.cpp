@@ -21,6 +21,7 @@
 using namespace arena::ops;
 using arena::test::fake_sidecar;
 using arena::test::io_thread;
+using arena::test::silent_listener;
 using namespace std::chrono_literals;
 using clock_type = std::chrono::steady_clock;
 
@@ -216,25 +217,15 @@ TEST_CASE("ops Agones flags: AGONES_SDK_HTTP_PORT turns it on unless --agones-po
 }
 
 TEST_CASE("ops http client: a sidecar that takes the connection and never answers times out", "[ops][agones]") {
-    // A listening socket that nobody accepts from: the kernel completes the handshake, then silence.
-    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t len = sizeof addr;
-    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
-    REQUIRE(listen(fd, 4) == 0);
-    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+    silent_listener silent;
 
     boost::asio::io_context io;
     http_result result;
     const auto asked = clock_type::now();
-    boost::asio::co_spawn(io,
-                          http_post(io.get_executor(), "127.0.0.1", ntohs(addr.sin_port), "/ready", "{}", 300'000'000),
+    boost::asio::co_spawn(io, http_post(io.get_executor(), "127.0.0.1", silent.port(), "/ready", "{}", 300'000'000),
                           [&](std::exception_ptr, http_result r) { result = r; });
     io.run();
     const double waited = ms_between(asked, clock_type::now());
-    close(fd);
     CHECK(result.status == 0);
     CHECK(result.error == "timed out");
     CHECK(waited > 250);
@@ -249,15 +240,8 @@ TEST_CASE("ops http client: the status of a response is read, a malformed one is
     while (sidecar.listening_since() == clock_type::time_point{} && clock_type::now() < deadline)
         std::this_thread::sleep_for(5ms);
     // A server that answers with something other than HTTP.
-    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t len = sizeof addr;
-    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
-    REQUIRE(listen(fd, 4) == 0);
-    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
-    std::thread not_http([fd] {
+    silent_listener not_http_server;  // accepted from below, by hand
+    std::thread not_http([fd = not_http_server.fd()] {
         const int peer = accept(fd, nullptr, nullptr);
         const std::string banner = "SSH-2.0-OpenSSH_9.2\r\n\r\n";
         send(peer, banner.data(), banner.size(), MSG_NOSIGNAL);
@@ -273,13 +257,12 @@ TEST_CASE("ops http client: the status of a response is read, a malformed one is
     };
     boost::asio::co_spawn(io, http_post(io.get_executor(), "127.0.0.1", sidecar.port(), "/health", "{}", 1'000'000'000),
                           keep(post));
-    boost::asio::co_spawn(io, http_get(io.get_executor(), "127.0.0.1", ntohs(addr.sin_port), "/healthz", 1'000'000'000),
-                          keep(get));
+    boost::asio::co_spawn(
+        io, http_get(io.get_executor(), "127.0.0.1", not_http_server.port(), "/healthz", 1'000'000'000), keep(get));
     boost::asio::co_spawn(io, http_get(io.get_executor(), "not-an-ip", sidecar.port(), "/", 1'000'000'000),
                           keep(bad_address));
     io.run();
     not_http.join();
-    close(fd);
     CHECK(post.status == 503);
     CHECK_FALSE(post.ok());
     CHECK(get.status == 0);

@@ -21,6 +21,7 @@ using namespace arena::ops;
 using arena::test::http_exchange;
 using arena::test::http_get;
 using arena::test::io_thread;
+using arena::test::silent_listener;
 using arena::test::status_of;
 
 namespace {
@@ -241,20 +242,11 @@ TEST_CASE("ops http: arena-healthcheck prints what it got, exits 2 on usage erro
     CHECK(run_command(program("arena-healthcheck") + " http://localhost:80/ 2>&1").exit_code == 1);
 
     // Takes the connection and never answers: the probe gives up at its timeout.
-    const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t len = sizeof addr;
-    REQUIRE(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
-    REQUIRE(listen(fd, 4) == 0);
-    REQUIRE(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+    silent_listener endpoint_that_never_answers;
     const auto start = std::chrono::steady_clock::now();
-    const auto silent =
-        run_command(program("arena-healthcheck") + " http://127.0.0.1:" + std::to_string(ntohs(addr.sin_port)) +
-                    "/healthz --timeout 0.3");
+    const auto silent = run_command(program("arena-healthcheck") + " http://127.0.0.1:" +
+                                    std::to_string(endpoint_that_never_answers.port()) + "/healthz --timeout 0.3");
     const auto waited = std::chrono::steady_clock::now() - start;
-    close(fd);
     CHECK(silent.exit_code == 1);
     CHECK(silent.output.find("-> 0") != std::string::npos);
     CHECK(waited >= std::chrono::milliseconds(250));

@@ -116,6 +116,22 @@ uint16_t free_port() {
     return ntohs(addr.sin_port);
 }
 
+silent_listener::silent_listener() {
+    fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr = loopback(0);
+    socklen_t len = sizeof addr;
+    if (fd_ < 0 || bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || listen(fd_, 4) != 0 ||
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+        if (fd_ >= 0) close(fd_);
+        throw std::runtime_error("silent_listener: cannot listen on 127.0.0.1");
+    }
+    port_ = ntohs(addr.sin_port);
+}
+
+silent_listener::~silent_listener() {
+    close(fd_);
+}
+
 fake_sidecar::fake_sidecar(uint16_t port, std::chrono::milliseconds start_delay) {
     port_ = port ? port : free_port();
     thread_ = std::thread([this, start_delay] { run(start_delay); });

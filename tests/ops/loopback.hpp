@@ -33,6 +33,23 @@ bool closed_by_peer(int fd, std::chrono::milliseconds wait);
 // A port nobody listens on right now (bound to 0, then released).
 uint16_t free_port();
 
+// A socket listening on 127.0.0.1 that nobody accepts from: the kernel completes a client's
+// handshake, then silence. Plays a peer that takes the connection and never answers.
+class silent_listener {
+public:
+    silent_listener();
+    ~silent_listener();
+    silent_listener(const silent_listener&) = delete;
+    silent_listener& operator=(const silent_listener&) = delete;
+
+    uint16_t port() const { return port_; }
+    int fd() const { return fd_; }
+
+private:
+    int fd_ = -1;
+    uint16_t port_ = 0;
+};
+
 // A stand-in for the Agones SDK sidecar's REST server: answers every request with `status`
 // and records method, path, body and arrival time.
 class fake_sidecar {
