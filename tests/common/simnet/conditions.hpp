@@ -2,9 +2,12 @@
 // What a simulated link does to the traffic in one direction, and the random numbers it draws
 // them from. Time is virtual: nanoseconds on a clock the test advances (sim_time), never read
 // from the machine, so a run is a pure function of its seed.
+#include <algorithm>
 #include <cstdint>
 
 #include "server/world/rng.hpp"
+#include "server/world/splitmix64.hpp"
+#include "simnet/link_stats.hpp"
 
 namespace arena::simnet {
 
@@ -43,6 +46,20 @@ public:
         const sim_time spread = upto(2 * c.jitter);
         return c.latency + spread >= c.jitter ? c.latency + spread - c.jitter : 0;
     }
+    // A reliable transmission (a stream's segment, a reliable message) first sent at `now`:
+    // when the copy that gets through leaves, each loss resending it after the retransmission
+    // timeout, which doubles up to its cap. The losses are counted in `stats`.
+    sim_time resent_until_through(const conditions& c, sim_time now, link_stats& stats) {
+        sim_time sent_at = now;
+        sim_time timeout = c.retransmit_timeout;
+        while (chance(c.loss)) {
+            ++stats.lost;
+            ++stats.retransmissions;
+            sent_at += timeout;
+            timeout = std::min(2 * timeout, c.max_retransmit_timeout);
+        }
+        return sent_at;
+    }
 
 private:
     world::rng rng_;
@@ -50,7 +67,7 @@ private:
 
 // A seed per link from the run's seed and the link's number.
 inline std::uint64_t link_seed(std::uint64_t seed, std::uint64_t link) {
-    return seed ^ (0x9e3779b97f4a7c15ULL * (link + 1));
+    return seed ^ (world::splitmix64::gamma * (link + 1));
 }
 
 }  // namespace arena::simnet

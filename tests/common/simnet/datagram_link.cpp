@@ -40,14 +40,7 @@ void datagram_link::send(std::span<const std::uint8_t> message, sim_time now) {
 void datagram_link::send_reliable(std::span<const std::uint8_t> message, sim_time now) {
     ++stats_.sent;
     stats_.sent_bytes += message.size();
-    sim_time sent_at = now;
-    sim_time timeout = conditions_.retransmit_timeout;
-    while (dice_.chance(conditions_.loss)) {
-        ++stats_.lost;
-        ++stats_.retransmissions;
-        sent_at += timeout;
-        timeout = std::min(2 * timeout, conditions_.max_retransmit_timeout);
-    }
+    const sim_time sent_at = dice_.resent_until_through(conditions_, now, stats_);
     // In order among the reliable messages: one that arrives early waits for those before it.
     last_reliable_ = std::max(sent_at + dice_.delay(conditions_), last_reliable_);
     put(message, last_reliable_);

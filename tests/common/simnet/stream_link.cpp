@@ -8,14 +8,7 @@ stream_link::stream_link(const conditions& c, std::uint64_t seed) : conditions_(
 
 sim_time stream_link::arrival(sim_time now) {
     ++stats_.sent;
-    sim_time sent_at = now;
-    sim_time timeout = conditions_.retransmit_timeout;
-    while (dice_.chance(conditions_.loss)) {
-        ++stats_.lost;
-        ++stats_.retransmissions;
-        sent_at += timeout;
-        timeout = std::min(2 * timeout, conditions_.max_retransmit_timeout);
-    }
+    const sim_time sent_at = dice_.resent_until_through(conditions_, now, stats_);
     sim_time arrives = sent_at + dice_.delay(conditions_);
     // Held back in the network: later segments overtake it and wait for it at the receiver.
     const bool held = dice_.chance(conditions_.reorder);
