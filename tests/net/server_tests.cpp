@@ -92,10 +92,17 @@ TEST_CASE("a client joins, sends inputs and receives snapshots that follow them"
         }
     }
     REQUIRE(ticks.size() >= 20);
+    // Every third tick at 60/20. A server that stalls catches up several ticks at once, and
+    // the newer snapshot replaces one not yet sent (one snapshot slot per client): a gap of a
+    // multiple of 3 is allowed, rarely.
+    size_t regular = 0;
     for (size_t i = 1; i < ticks.size(); ++i) {
-        CHECK(ticks[i] == ticks[i - 1] + 3);  // every third tick at 60/20
+        CHECK(ticks[i] > ticks[i - 1]);
+        CHECK((ticks[i] - ticks[i - 1]) % 3 == 0);
+        regular += ticks[i] == ticks[i - 1] + 3 ? 1 : 0;
         CHECK(acks[i] >= acks[i - 1]);
     }
+    CHECK(regular * 10 >= (ticks.size() - 1) * 9);
     CHECK(acks.back() > 0);
     CHECK(acks.back() <= sequence);
     auto snap = protocol::decode_snapshot(*message_of(last_snapshot));
