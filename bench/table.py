@@ -89,6 +89,24 @@ def pyramid_table(rows):
             "yes" if ours["standing"] else "**fell**", "yes" if theirs["standing"] else "**fell**", target))
 
 
+PHASES = ["inputs", "forces_velocities", "broadphase", "narrow_phase", "solver", "positions", "correction"]
+
+
+def profile_table(rows):
+    """The world step by phase (world::step_profile), from the best run of each N."""
+    prof = [r for r in rows if r["bench"] == "world_step" and "profile_ms" in r]
+    if not prof:
+        return
+    print()
+    print("World step by phase: mean ms per step, timed apart from the runs above (as many steps again)")
+    print()
+    print("| N | " + " | ".join(p.replace("_", " ") for p in PHASES) + " | sum |")
+    print("|---:|" + "---:|" * (len(PHASES) + 1))
+    for r in prof:
+        p = r["profile_ms"]
+        print("| %d | " % r["n"] + " | ".join("%.4f" % p[k] for k in PHASES) + " | %.4f |" % sum(p[k] for k in PHASES))
+
+
 def best_runs(rows):
     """run.sh repeats the step and integration cases: keep, per case and N, the run with the best
     median (the same policy as the Box2D scene's best of R), in first-seen order, with the count."""
@@ -184,6 +202,7 @@ def main(argv):
                 best["engine"], best["version"], len(theirs), best["overlaps_last_step"], best["mean_speed"], n,
                 best["ms_per_step_median"], best["ms_per_step_p90"], ratio))
     print("\n".join(out))
+    profile_table(rows)
     bandwidth_table(rows)
     pyramid_table(rows)
     for note in notes:

@@ -27,6 +27,12 @@ int run_single_body(const sim::single_body_scenario& s) {
     return 0;
 }
 
+// The world's step timer (server/world/profile.hpp) on the steady clock.
+int64_t steady_now_ns(void*) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
 // Every body as CSV, in id order: what a run ended with, checkable from outside.
 void print_final_state(const world::world& w) {
     std::printf("id,x,y,angle,vx,vy,omega\n");
@@ -36,7 +42,7 @@ void print_final_state(const world::world& w) {
 }
 
 int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, uint32_t steps, uint64_t seed,
-               bool final_state) {
+               bool final_state, bool profile) {
     if (bodies_given) {
         // Every rock is a body: beyond max_bodies the world would only stop spawning.
         if (bodies > config.max_bodies) {
@@ -52,12 +58,22 @@ int run_preset(world::world_config config, uint32_t bodies, bool bodies_given, u
         config.rocks.count = bodies;
     }
     world::world w(config, seed);
+    if (profile) w.set_step_timer({steady_now_ns, nullptr});
     const auto start = std::chrono::steady_clock::now();
     for (uint32_t k = 0; k < steps; ++k) w.step({});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("bodies=%zu steps=%u\n", w.bodies().size(), steps);
     std::printf("hash=%016" PRIx64 "\n", w.hash());
     std::printf("ms_per_step=%.4f\n", steps ? seconds * 1e3 / steps : 0.0);
+    if (profile) {
+        // Mean ms per step in each phase of world::step, then their sum.
+        std::printf("profile_ms");
+        for (size_t i = 0; i < world::step_phase_count; ++i) {
+            const auto phase = static_cast<world::step_phase>(i);
+            std::printf(" %s=%.4f", world::step_phase_name(phase), w.profile().ms(phase));
+        }
+        std::printf(" total=%.4f\n", w.profile().total_ms());
+    }
     if (final_state) print_final_state(w);
     return 0;
 }
@@ -145,10 +161,17 @@ int main(int argc, char** argv) {
     app.add_option("--config", config_file, "run a whole world from a JSON config file");
     auto* bodies_opt = app.add_option("--bodies", bodies, "rock count for --preset/--config");
     app.add_option("--seed", seed, "seed for --preset/--config (default 1)");
+    bool profile = false;
+    app.add_flag("--profile", profile,
+                 "with --preset/--config: print the mean ms per step of each phase of the world step");
     app.add_option("--plot", plot, "write an SVG of the trajectory for several dt against the exact solution");
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
 
     s.integrator = integrator == "explicit" ? world::integrator::explicit_euler : world::integrator::semi_implicit;
+    if (profile && preset.empty() && config_file.empty()) {
+        std::fprintf(stderr, "arena-sim: --profile: times a whole world's step: give --preset or --config\n");
+        return 2;
+    }
     if (!preset.empty() || !config_file.empty()) {
         world::world_config config;
         if (!config_file.empty()) {
@@ -171,7 +194,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "arena-sim: --base: only for --preset pyramid\n");
             return 2;
         }
-        return run_preset(config, bodies, bodies_opt->count() > 0, s.steps, seed, final_state);
+        return run_preset(config, bodies, bodies_opt->count() > 0, s.steps, seed, final_state, profile);
     }
     if (auto problem = sim::check_scenario(s)) {
         std::fprintf(stderr, "arena-sim: %s\n", problem->c_str());

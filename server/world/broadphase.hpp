@@ -11,6 +11,7 @@
 
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
+#include "server/world/profile.hpp"
 #include "server/world/shape.hpp"
 #include "server/world/trig.hpp"
 
@@ -42,6 +43,7 @@ struct broadphase_scratch {
                                                        // when the grid has too many cells for a table
     std::vector<std::pair<uint32_t, uint32_t>> pairs;  // candidate (a, b) indices, a < b
     std::vector<cos_sin> rotations;                    // body index → rotation, for bodies with a shape
+    phase_laps* laps = nullptr;                        // world::step's stopwatch, while it runs
 };
 
 // Where the broadphase finds the shapes of bodies that are not circles (body::shape indexes
@@ -190,11 +192,13 @@ void for_each_candidate_pair(std::span<const body> bodies, const grid& g, broadp
                              const proxy_source& source) {
     if (g.wraps && (g.nx < 3 || g.ny < 3)) {
         detail::proxies_in_index_order(bodies, s, source);
+        if (s.laps) s.laps->lap(step_phase::broadphase);
         for (size_t a = 0; a < s.proxies.size(); ++a)
             for (size_t b = a + 1; b < s.proxies.size(); ++b) visit(s.proxies[a], s.proxies[b]);
         return;
     }
     bucket_by_cell(bodies, g, s, source);
+    if (s.laps) s.laps->lap(step_phase::broadphase);
     // Each body in cell order meets the bodies after it in its own cell, then those of half of
     // its 3×3 neighbourhood in cell order: (+1, 0), (−1, +1), (0, +1), (+1, +1). Each pair of
     // cells is visited once, so each pair of bodies is.

@@ -55,16 +55,27 @@ void world::place_bodies() {
 }
 
 void world::step(const tick_inputs& inputs) {
+    // The broadphase's lap is taken inside detection, once the bodies are bucketed.
+    phase_laps laps(timer_, profile_);
+    scratch_.laps = timer_.now_ns ? &laps : nullptr;
     apply_inputs(inputs);
+    laps.lap(step_phase::inputs);
     const body_extent extent = integrate_velocities();
+    laps.lap(step_phase::forces_velocities);
     detect_collisions(extent);
+    laps.lap(step_phase::narrow_phase);
     impulses_.load(bodies_, contacts_);
     solver_.solve_velocities(bodies_, contacts_, config_);
     impulses_.store(bodies_, contacts_);
+    laps.lap(step_phase::solver);
     integrate_positions();
+    laps.lap(step_phase::positions);
     solver_.correct_positions(bodies_, contacts_, config_);
     wrap_touched_bodies();
     note_supported();
+    laps.lap(step_phase::correction);
+    laps.finish();
+    scratch_.laps = nullptr;
     ++tick_;
 }
 

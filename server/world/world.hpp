@@ -10,6 +10,7 @@
 #include "server/world/config.hpp"
 #include "server/world/contacts.hpp"
 #include "server/world/input.hpp"
+#include "server/world/profile.hpp"
 #include "server/world/rng.hpp"
 #include "server/world/shape.hpp"
 #include "server/world/solver.hpp"
@@ -67,6 +68,12 @@ public:
     // True when `b` rests on or touches the floor, or stood on another body in the last step.
     bool on_ground(const body& b) const;
 
+    // Per-phase timing of step() (profile.hpp): from now on every step adds to profile(), read
+    // through `timer`; a default step_timer turns it off. The results never depend on it.
+    void set_step_timer(const step_timer& timer) { timer_ = timer; }
+    const step_profile& profile() const { return profile_; }
+    void reset_profile() { profile_ = {}; }
+
 private:
     void apply_inputs(const tick_inputs& inputs);
     body_extent integrate_velocities();  // forces, velocities (and explicit Euler's positions)
@@ -98,6 +105,8 @@ private:
     bool statics_dirty_ = true;  // bodies added or removed since statics_ was built
     std::vector<uint32_t> query_scratch_;
     std::vector<uint32_t> supported_;  // ids, increasing (see note_supported)
+    step_timer timer_;
+    step_profile profile_;
 };
 
 }  // namespace arena::world

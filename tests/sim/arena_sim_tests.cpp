@@ -121,3 +121,34 @@ TEST_CASE("arena-sim --bodies is honoured up to max_bodies, and max_bodies limit
     CHECK(r.out.rfind("bodies=10 steps=1\n", 0) == 0);
     std::remove(path.c_str());
 }
+
+TEST_CASE("arena-sim --profile prints every phase of the step and leaves the hash alone", "[sim][profile]") {
+    const run_result plain = run("--preset asteroids --bodies 500 --steps 30 --seed 4");
+    const run_result timed = run("--preset asteroids --bodies 500 --steps 30 --seed 4 --profile");
+    REQUIRE(plain.status == 0);
+    REQUIRE(timed.status == 0);
+    CHECK(plain.out.find("profile_ms") == std::string::npos);
+    CHECK(timed.out.substr(timed.out.find("hash="), 22) == plain.out.substr(plain.out.find("hash="), 22));
+    const std::string line = last_line(timed.out);
+    INFO(line);
+    REQUIRE(line.rfind("profile_ms ", 0) == 0);
+    double sum = 0, total = -1;
+    for (const char* phase :
+         {"inputs", "forces_velocities", "broadphase", "narrow_phase", "solver", "positions", "correction", "total"}) {
+        const auto at = line.find(std::string(" ") + phase + "=");
+        REQUIRE(at != std::string::npos);
+        const double ms = std::stod(line.substr(at + std::string(phase).size() + 2));
+        CHECK(ms >= 0);
+        if (std::string(phase) == "total") {
+            total = ms;
+        } else {
+            sum += ms;
+        }
+    }
+    CHECK(total > 0);
+    CHECK(total == Approx(sum).margin(1e-3));
+
+    const run_result single = run("--profile");
+    CHECK(single.status == 2);
+    CHECK(single.out.find("arena-sim: --profile") == 0);
+}
