@@ -1,7 +1,7 @@
 #pragma once
 // A run's figures, each described once and reported to any sink: the --stats-json writer, the
-// /metrics writer, a test. A counters struct has one report() that lists its figures, so that
-// adding a figure is one line there and it shows up everywhere.
+// /metrics writer, the periodic stats log line, a test. A counters struct has one report() that
+// lists its figures, so that adding a figure is one line there and it shows up everywhere.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -14,6 +14,8 @@ struct figure {
     std::string_view stats;   // --stats-json field ("joins"; "snapshots/delta_frames" nests)
     std::string_view metric;  // /metrics family ("arena_player_joins_total")
     std::string_view help;    // one line for the metric's HELP, with its unit
+    std::string_view log{};   // key in the stats log line ("players"), in the order reported
+    int decimals = 3;         // digits after the point of a fractional gauge in the log line
 };
 
 class figure_sink {

@@ -1,10 +1,12 @@
-// The match's figures, named once for --stats-json and /metrics (figures.hpp).
+// The match's figures, named once for --stats-json, /metrics and the stats log line (figures.hpp).
 #include "server/match/match.hpp"
 
 namespace arena::match {
 
 void report(const match_counters& c, figure_sink& out) {
-    out.counter({"ticks", "arena_ticks_total", "World steps run."}, c.ticks);
+    // The log line counts a player in the grace too: its body is still in the match.
+    out.gauge({"", "", "", "players"}, c.players + c.players_in_grace);
+    out.counter({"ticks", "arena_ticks_total", "World steps run.", "ticks"}, c.ticks);
     out.gauge({"", "arena_players_connected", "Players in the match with a live connection."}, c.players);
     out.gauge({"", "arena_players_in_grace", "Dropped players whose bodies wait for them to reconnect."},
               c.players_in_grace);

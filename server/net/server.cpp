@@ -10,6 +10,7 @@
 #include "server/net/log.hpp"
 #include "server/net/session.hpp"
 #include "server/net/stats_json.hpp"
+#include "server/ops/stats_line.hpp"
 
 namespace arena::net {
 
@@ -180,13 +181,17 @@ void server::check_stalled_sessions(int64_t now) {
 
 void server::log_stats(int64_t now) {
     const double seconds = static_cast<double>(now - window_start_ns_) / 1e9;
-    log_line(
-        "stats players=%zu ticks=%u tick_ms_p50=%.3f tick_ms_p99=%.3f tick_ms_max=%.3f overruns=%llu "
-        "bytes_in_per_s=%.0f bytes_out_per_s=%.0f connections=%zu",
-        match_.player_count(), match_.state().tick(), ms(window_ticks_.quantile_ns(0.5)),
-        ms(window_ticks_.quantile_ns(0.99)), ms(window_ticks_.max_ns()),
-        static_cast<unsigned long long>(clock_.overruns()), static_cast<double>(window_traffic_.bytes_in) / seconds,
-        static_cast<double>(window_traffic_.bytes_out) / seconds, sessions_.size());
+    ops::process_counters p = process_counters();
+    p.window.tick_ms_p50 = ms(window_ticks_.quantile_ns(0.5));
+    p.window.tick_ms_p99 = ms(window_ticks_.quantile_ns(0.99));
+    p.window.tick_ms_max = ms(window_ticks_.max_ns());
+    p.window.bytes_in_per_s = static_cast<double>(window_traffic_.bytes_in) / seconds;
+    p.window.bytes_out_per_s = static_cast<double>(window_traffic_.bytes_out) / seconds;
+    // The same figures as --stats-json and /metrics, through the same report()s.
+    ops::stats_line_sink line;
+    report(match_.counters(), line);
+    report(p, line);
+    log_line("%s", line.line().c_str());
     window_ticks_.clear();
     window_traffic_ = {};
     window_start_ns_ = now;

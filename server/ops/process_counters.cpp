@@ -3,9 +3,16 @@
 namespace arena::ops {
 
 void report(const process_counters& c, match::figure_sink& out) {
-    out.counter({"overruns", "arena_tick_overruns_total", "Ticks dropped because the tick loop fell behind."},
-                c.tick_overruns);
-    out.gauge({"", "arena_connections_open", "Open client connections, joined or not."}, c.connections_open);
+    out.gauge({"", "", "", "tick_ms_p50"}, c.window.tick_ms_p50);
+    out.gauge({"", "", "", "tick_ms_p99"}, c.window.tick_ms_p99);
+    out.gauge({"", "", "", "tick_ms_max"}, c.window.tick_ms_max);
+    out.counter(
+        {"overruns", "arena_tick_overruns_total", "Ticks dropped because the tick loop fell behind.", "overruns"},
+        c.tick_overruns);
+    out.gauge({"", "", "", "bytes_in_per_s", 0}, c.window.bytes_in_per_s);
+    out.gauge({"", "", "", "bytes_out_per_s", 0}, c.window.bytes_out_per_s);
+    out.gauge({"", "arena_connections_open", "Open client connections, joined or not.", "connections"},
+              c.connections_open);
     out.gauge({"connections_peak", "arena_connections_peak", "Most client connections open at once."},
               c.connections_peak);
     out.counter({"bytes_in", "arena_received_bytes_total", "Bytes read from clients."}, c.bytes_in);

@@ -1,12 +1,23 @@
 #pragma once
 // The process's own figures, beside each match's (match_counters): its connections, the bytes
-// and messages its transports moved, the ticks its loop dropped. One report() names them for
-// --stats-json and /metrics (server/match/figures.hpp).
+// and messages its transports moved, the ticks its loop dropped, and the last stats window's
+// tick times and traffic. One report() names them for --stats-json, /metrics and the stats log
+// line (server/match/figures.hpp).
 #include <cstdint>
 
 #include "server/match/figures.hpp"
 
 namespace arena::ops {
+
+// Since the last stats log line: only that line shows them (the whole run's tick times are the
+// /metrics histogram and the --stats-json tick_ms, its traffic the byte counters).
+struct stats_window {
+    double tick_ms_p50 = 0;  // world step time, ms
+    double tick_ms_p99 = 0;
+    double tick_ms_max = 0;
+    double bytes_in_per_s = 0;   // read from clients
+    double bytes_out_per_s = 0;  // written to clients
+};
 
 struct process_counters {
     uint64_t connections_open = 0;  // client connections now, joined or not
@@ -16,6 +27,7 @@ struct process_counters {
     uint64_t messages_in = 0;       // verified protocol messages read
     uint64_t messages_out = 0;      // frames written
     uint64_t tick_overruns = 0;     // ticks dropped because the loop fell behind
+    stats_window window;            // filled for the stats log line only
 };
 
 void report(const process_counters& c, match::figure_sink& out);

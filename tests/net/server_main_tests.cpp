@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "common/run_command.hpp"
@@ -121,4 +122,23 @@ TEST_CASE("a log reader that goes away (SIGPIPE) does not kill the server", "[ne
     CHECK(r.output == "0\n");
     CHECK(read_file(stats).find("\"ticks\"") != std::string::npos);
     std::remove(stats.c_str());
+}
+
+TEST_CASE("the periodic stats log line keeps its fields, their order and their format", "[net][e2e][stats]") {
+    // Scripts read this line: it is rendered from the report()s (server/ops/stats_line.hpp) and
+    // must stay the line it always was.
+    const auto r = run_command("timeout 20 " + program("arena-server") +
+                               " --port 0 --duration 0.6 --stats-interval 0.2 2>&1 >/dev/null");
+    const std::regex line(
+        R"(\[ *[0-9.]+\] stats players=0 ticks=[0-9]+ tick_ms_p50=[0-9]+\.[0-9]{3} tick_ms_p99=[0-9]+\.[0-9]{3} )"
+        R"(tick_ms_max=[0-9]+\.[0-9]{3} overruns=[0-9]+ bytes_in_per_s=[0-9]+ bytes_out_per_s=[0-9]+ connections=0)");
+    std::istringstream lines(r.output);
+    int found = 0;
+    for (std::string l; std::getline(lines, l);)
+        if (l.find("stats ") != std::string::npos) {
+            INFO(l);
+            CHECK(std::regex_match(l, line));
+            ++found;
+        }
+    CHECK(found >= 2);
 }
