@@ -9,6 +9,8 @@
 
 #include "bench/timing.hpp"
 #include "protocol/snapshot.hpp"
+#include "scenes/scatter.hpp"
+#include "scenes/sticks.hpp"
 #include "server/match/body_state.hpp"
 #include "server/match/tick_record.hpp"
 #include "server/replay/header.hpp"
@@ -82,12 +84,9 @@ void bench_integration(uint32_t bodies, int samples) {
     std::vector<world::body> state;
     state.reserve(bodies);
     world::rng r(7);
+    const scenes::scatter_box box{{0, 0}, config.size, config.rocks.min_radius, config.rocks.max_radius};
     for (uint32_t i = 0; i < bodies; ++i) {
-        world::body_material m = config.rocks.material;
-        m.radius = r.uniform(config.rocks.min_radius, config.rocks.max_radius);
-        const float x = r.uniform(0, config.size.x());
-        const float y = r.uniform(0, config.size.y());
-        world::body b = world::make_body(m, {x, y});
+        world::body b = scenes::scattered_circle(r, box, config.rocks.material);
         const float vx = r.uniform(-config.rocks.max_speed, config.rocks.max_speed);
         const float vy = r.uniform(-config.rocks.max_speed, config.rocks.max_speed);
         const float w = r.uniform(-3, 3);
@@ -172,12 +171,8 @@ bool bench_replay(uint32_t players, uint32_t ticks, const std::string& path) {
             if (k == 0)
                 for (uint32_t p = 1; p <= players; ++p) record.joins.push_back(p);
             for (uint32_t p = 0; p < body_of.size(); ++p) {
-                // A human's stick: held for a while, then moved. One draw per statement.
-                if (script.next_u64() % 20 == 0) {
-                    const float thrust = script.uniform(-1, 1);
-                    const float turn = script.uniform(-1, 1);
-                    stick[p] = {thrust, turn, 0};
-                }
+                // A human's stick: held for a while, then moved.
+                scenes::move_stick_now_and_then(script, stick[p]);
                 world::player_input in = stick[p];
                 in.buttons = script.next_u64() % 40 == 0 ? world::button_impulse : 0;
                 record.inputs.push_back({body_of[p], in});

@@ -25,8 +25,6 @@ float clamp_unit(float v) {
     return std::clamp(v, -1.0f, 1.0f);
 }
 
-// One impulse in about this many ticks (1.5 s at 60 Hz) for the random walk.
-constexpr std::uint64_t impulse_one_in = 90;
 // A seek waypoint counts as reached within this distance, m.
 constexpr float waypoint_reached = 5.0f;
 
@@ -105,13 +103,7 @@ player_input behavior::next(const observation& seen) {
 }
 
 player_input behavior::random_walk() {
-    // Small steps keep the motion smooth enough to look like steering, not noise.
-    const float dthrust = rng_.uniform(-0.1f, 0.1f);
-    const float dturn = rng_.uniform(-0.2f, 0.2f);
-    thrust_ = std::clamp(thrust_ + dthrust, -0.2f, 1.0f);
-    turn_ = clamp_unit(turn_ + dturn);
-    const bool impulse = rng_.next_u64() % impulse_one_in == 0;
-    return {thrust_, turn_, impulse ? world::button_impulse : std::uint8_t{0}};
+    return wander_.next(rng_);
 }
 
 void behavior::observe(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "protocol/arena_generated.h"
+#include "scenes/sticks.hpp"
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
 #include "server/world/input.hpp"
@@ -63,8 +64,7 @@ private:
     world::world_config config_;  // boundary, size and control style: how to steer
     world::rng rng_;
     // random
-    float thrust_ = 0;
-    float turn_ = 0;
+    scenes::wandering_stick wander_;  // the random walk's stick
     // seek
     std::uint32_t target_id_ = 0;
     std::optional<world::vec2> target_;  // m, where the target was last seen (or the waypoint)

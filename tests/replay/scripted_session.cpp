@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "scenes/sticks.hpp"
 #include "server/match/tick_record.hpp"
 #include "server/replay/recorder.hpp"
 #include "server/world/presets.hpp"
@@ -29,20 +30,10 @@ struct player {
     world::player_input stick{};
 };
 
-// One side effect per statement: argument evaluation order differs between compilers
-// (docs/DETERMINISM.md rule 3).
-void maybe_move_stick(world::rng& script, world::player_input& stick) {
-    if (script.next_u64() % 20 != 0) return;
-    const world::real thrust = script.uniform(-1, 1);
-    const world::real turn = script.uniform(-1, 1);
-    stick.thrust = thrust;
-    stick.turn = turn;
-}
-
 world::tick_inputs draw_inputs(world::rng& script, std::map<uint32_t, player>& players) {
     world::tick_inputs inputs;
     for (auto& [owner, p] : players) {  // std::map: owner order, never hash order
-        maybe_move_stick(script, p.stick);
+        scenes::move_stick_now_and_then(script, p.stick);
         const bool sent = script.next_u64() % 10 != 0;  // a jittery client misses a tick now and then
         const bool fire = script.next_u64() % 40 == 0;
         if (!sent) continue;

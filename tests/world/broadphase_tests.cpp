@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <set>
 
+#include "scenes/scatter.hpp"
 #include "server/world/broadphase.hpp"
 #include "server/world/rng.hpp"
 #include "server/world/world.hpp"
@@ -33,13 +34,8 @@ TEST_CASE("grid pairs match brute force in open, wrapping and walled worlds", "[
             rng r(seed);
             std::vector<body> bodies;
             const int n = 50 + static_cast<int>(seed) * 7;
-            for (int i = 0; i < n; ++i) {
-                body_material m;
-                m.radius = r.uniform(0.2f, 2.0f);
-                const real x = r.uniform(0, 60);
-                const real y = r.uniform(0, 40);
-                bodies.push_back(make_body(m, {x, y}));
-            }
+            for (int i = 0; i < n; ++i)
+                bodies.push_back(arena::scenes::scattered_circle(r, {{0, 0}, {60, 40}, 0.2f, 2.0f}));
             broadphase_scratch scratch;
             find_candidate_pairs(bodies, c, scratch);
             std::set<std::pair<uint32_t, uint32_t>> found;

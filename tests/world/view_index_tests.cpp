@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
+#include "scenes/scatter.hpp"
 #include "server/world/rng.hpp"
 #include "server/world/view_index.hpp"
 
@@ -29,13 +30,10 @@ TEST_CASE("view queries match a scan of every body in open, wrapping and walled 
             rng r(seed);
             std::vector<body> bodies;
             const int n = 100 + static_cast<int>(seed) * 40;
-            for (int i = 0; i < n; ++i) {
-                body_material m;
-                m.radius = r.uniform(0.2f, 3.0f);
-                // Open worlds let bodies stray outside the nominal size.
-                const real spill = mode == boundary::open ? 30.0f : 0.0f;
-                bodies.push_back(make_body(m, {r.uniform(-spill, 200 + spill), r.uniform(-spill, 120 + spill)}));
-            }
+            // Open worlds let bodies stray outside the nominal size.
+            const real spill = mode == boundary::open ? 30.0f : 0.0f;
+            const arena::scenes::scatter_box box{{-spill, -spill}, {200 + spill, 120 + spill}, 0.2f, 3.0f};
+            for (int i = 0; i < n; ++i) bodies.push_back(arena::scenes::scattered_circle(r, box));
             // Small radii, one near the cell size, and one wider than half the world (a wrap
             // then covers every cell).
             for (real radius : {1.0f, 15.0f, 40.0f, 130.0f}) {
