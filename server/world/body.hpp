@@ -8,6 +8,7 @@
 #include <string>
 
 #include "server/world/config.hpp"
+#include "server/world/filter.hpp"
 #include "server/world/shape.hpp"
 #include "server/world/types.hpp"
 
@@ -37,6 +38,7 @@ struct body {
     real resistance_torque = 0.0f;  // N·m, angular damping this step, same rule
     uint32_t impulse_cooldown = 0;  // ticks until button 0 may fire again
     uint32_t shape = no_shape;      // index in the world's shape pool (set by world::add_body)
+    collision_filter filter{};      // which bodies it collides with (walls ignore it)
 
     void apply_force(const vec2& f) { force += f; }
     void apply_torque(real t) { torque += t; }

@@ -113,6 +113,7 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
                                 const body& a = bodies[ia];
                                 const body& b = bodies[ib];
                                 if (a.is_static() && b.is_static()) return;
+                                if (!should_collide(a.filter, b.filter)) return;
                                 // b where a sees it: across the seam in a wrapping world.
                                 const vec2 pb = a.position + displacement(a.position, b.position, config);
                                 manifold m;
@@ -146,6 +147,7 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
                 if (!own) own = &shape_of(b, scene.pool, circle);
                 shape other_circle;
                 const body& other = bodies[e.index];
+                if (!should_collide(b.filter, other.filter)) return;
                 const manifold m = collide(*own, transform_of(b, i, b.position, scratch),
                                            shape_of(other, scene.pool, other_circle), e.xf, spec);
                 if (m.count == 0) return;

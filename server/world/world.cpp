@@ -65,7 +65,9 @@ void world::step(const tick_inputs& inputs) {
     detect_collisions(extent);
     laps.lap(step_phase::narrow_phase);
     impulses_.load(bodies_, contacts_);
+    if (events_on_) events_.measure_approach(bodies_, contacts_);
     solver_.solve_velocities(bodies_, contacts_, config_);
+    if (events_on_) events_.collect(bodies_, contacts_);
     impulses_.store(bodies_, contacts_);
     laps.lap(step_phase::solver);
     integrate_positions();
@@ -148,6 +150,12 @@ void world::wrap_touched_bodies() {
         wrap_position(bodies_[c.a], config_);
         if (c.with == wall::none) wrap_position(bodies_[c.b], config_);
     }
+}
+
+void world::set_contact_events(bool on) {
+    if (on == events_on_) return;
+    events_on_ = on;
+    events_.reset();
 }
 
 bool world::on_ground(const body& b) const {
@@ -419,6 +427,14 @@ uint64_t world::hash() const {
         h.add_real(b.angle);
         h.add_real(b.angular_velocity);
         h.add_u32(b.impulse_cooldown);
+        // Only a filter someone set: a world that never sets one keeps the hashes it had
+        // before filters existed (the golden hashes), and one that does still hashes them all.
+        if (!b.filter.is_default()) {
+            h.add_u8(0xf1);
+            h.add_u32(b.filter.category);
+            h.add_u32(b.filter.mask);
+            h.add_u32(static_cast<uint32_t>(b.filter.group));
+        }
     }
     return h.value();
 }

@@ -8,6 +8,7 @@
 
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
+#include "server/world/contact_events.hpp"
 #include "server/world/contacts.hpp"
 #include "server/world/input.hpp"
 #include "server/world/profile.hpp"
@@ -28,6 +29,8 @@ public:
     // A world with the config's rocks spawned from `seed`.
     world(const world_config& config, uint64_t seed);
 
+    // Bodies may be added and removed between steps (game rules spawn bullets and split rocks);
+    // an id the world assigned is never assigned again, even after its body is removed.
     // Adds a body; its id is assigned when b.id == 0, else b.id is used (it must be unused).
     // Returns the id, or nothing when the world is full or the id is taken.
     std::optional<uint32_t> add_body(body b);
@@ -65,6 +68,12 @@ public:
     const world_config& config() const { return config_; }
     // Contacts found in the last step (for tests and tools).
     std::span<const contact> last_contacts() const { return contacts_; }
+    // Contact events (contact_events.hpp): off by default (they cost a pass over the contacts);
+    // game rules turn them on. They never change the state, so the hash ignores them.
+    void set_contact_events(bool on);
+    bool contact_events_on() const { return events_on_; }
+    // The pairs that began touching in the last step, sorted by (a, b); empty when off.
+    std::span<const contact_event> contact_events() const { return events_.events(); }
     // True when `b` rests on or touches the floor, or stood on another body in the last step.
     bool on_ground(const body& b) const;
 
@@ -107,6 +116,8 @@ private:
     std::vector<uint32_t> supported_;  // ids, increasing (see note_supported)
     step_timer timer_;
     step_profile profile_;
+    bool events_on_ = false;
+    contact_event_tracker events_;
 };
 
 }  // namespace arena::world
