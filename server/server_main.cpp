@@ -163,7 +163,9 @@ int main(int argc, char** argv) {
             };
             server.on_shutdown = [&] {
                 if (recording_failed) return;
-                if (auto s = recorder->finish(w.tick(), w.hash()); !s)
+                // The state hash (the world's, then the rules'), as every recorded tick's.
+                const uint64_t end_hash = rules::state_hash(w, server.match().game_rules());
+                if (auto s = recorder->finish(w.tick(), end_hash); !s)
                     net::log_line("recording failed at the end: %s", s.error.c_str());
                 else
                     net::log_line("recorded %u ticks to %s", w.tick(), record.c_str());

@@ -113,6 +113,8 @@ constexpr std::pair<const char*, world::boundary> boundary_names[] = {{"open", w
                                                                       {"wrap", world::boundary::wrap},
                                                                       {"walls", world::boundary::walls},
                                                                       {"floor", world::boundary::floor}};
+constexpr std::pair<const char*, world::game_rules> rules_names[] = {{"sandbox", world::game_rules::sandbox},
+                                                                     {"asteroids", world::game_rules::asteroids}};
 
 void read_material(const json& j, const std::string& path, world::body_material& m) {
     object_reader r(j, path);
@@ -350,6 +352,7 @@ world::world_config read_world(const json& j) {
     if (const json* m = r.take("control")) read_control(*m, "control", c.control);
     if (const json* m = r.take("rocks")) read_rocks(*m, "rocks", c.rocks);
     if (const json* b = r.take("bodies")) read_bodies(*b, "bodies", c.bodies);
+    r.read_enum("rules", c.rules, rules_names);
     r.finish();
     check_ranges(c);
     return c;
@@ -471,6 +474,9 @@ std::string config_to_json(const world::world_config& c) {
           {"polygon_vertices", c.rocks.polygon_vertices}}},
         {"bodies", bodies_json(c.bodies)},
     };
+    // Only rules other than the sandbox's: the JSON of a sandbox world (and its hash in
+    // Welcome and in recordings) stays what it was before rules existed.
+    if (c.rules != world::game_rules::sandbox) j["rules"] = enum_name(c.rules, rules_names);
     return j.dump(2);
 }
 

@@ -38,6 +38,7 @@ match::match(const match_config& config, const world::world_config& world_config
       log_(std::move(log)),
       admission_(limits_of(config), std::move(check_token)),
       world_(world_config, config.seed),
+      rules_(rules::make_rules(world_)),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
       fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {
@@ -305,9 +306,13 @@ void match::tick() {
         // A disconnected player's body coasts: no thrust, no turn, no buttons.
         if (p.body_id != 0) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
     }
-    const std::vector<uint32_t> spawned = apply_tick(world_, record);
-    if (on_tick) on_tick(record, world_.hash());
+    const std::vector<uint32_t> spawned = apply_tick(world_, *rules_, record);
+    if (on_tick) on_tick(record, rules::state_hash(world_, *rules_));
     spawn_pending(record.joins, spawned);
+    // A ship the rules respawned is the player's body from now on; a player without one keeps
+    // its last body id (snapshots then show an empty view, and a leave names that body).
+    for (auto& [id, p] : players_)
+        if (const uint32_t body = rules_->body_of(id); body != 0) p.body_id = body;
     // Taken out of the list first: a send may end a connection (a Reject while sending), whose
     // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the
     // list itself then skipped a reconnected player's Welcome.
@@ -397,6 +402,15 @@ void match::send_snapshot(player& p) {
         p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack) : fanout_.full_frame(p.body_id, ack);
     counters_.snapshot_bytes = frame.size();
     p.who->send_snapshot_frame(frame);
+}
+
+std::vector<match::named_score> match::scoreboard() const {
+    std::vector<named_score> out;
+    for (const rules::score_line& line : rules_->scoreboard()) {
+        const auto it = players_.find(line.player);
+        out.push_back({it == players_.end() ? std::string() : it->second.name, line});
+    }
+    return out;
 }
 
 match_counters match::counters() const {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -106,6 +107,14 @@ public:
     std::function<void(const tick_record&, uint64_t)> on_tick;
 
     const world::world& state() const { return world_; }
+    // The game rules this match plays by (the world config's `rules`).
+    const rules::rules& game_rules() const { return *rules_; }
+    // The scoreboard, in player id order, with each player's name (empty under sandbox rules).
+    struct named_score {
+        std::string name;
+        rules::score_line line;
+    };
+    std::vector<named_score> scoreboard() const;
     const match_config& config() const { return config_; }
     const admission& rules() const { return admission_; }
     const std::string& world_config_json() const { return world_config_json_; }
@@ -162,6 +171,7 @@ private:
     logger log_;
     admission admission_;
     world::world world_;
+    std::unique_ptr<rules::rules> rules_;  // set up on world_, before anything else touches it
     std::string world_config_json_;
     uint64_t world_config_hash_;
     client_map clients_;

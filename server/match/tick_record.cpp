@@ -10,4 +10,15 @@ std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record) {
     return spawned;
 }
 
+std::vector<uint32_t> apply_tick(world::world& w, rules::rules& r, const tick_record& record) {
+    std::vector<uint32_t> spawned = w.spawn_players(record.joins);
+    r.on_joins(w, record.joins, spawned);
+    r.on_leaves(w, record.leaves);
+    w.remove_bodies(record.leaves);
+    r.before_step(w, record.inputs);
+    w.step(record.inputs);
+    r.after_step(w);
+    return spawned;
+}
+
 }  // namespace arena::match

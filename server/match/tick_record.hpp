@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "server/rules/rules.hpp"
 #include "server/world/input.hpp"
 #include "server/world/world.hpp"
 
@@ -20,5 +21,9 @@ struct tick_record {
 // Joins (world::spawn_player), then leaves (world::remove_body), then one step with the inputs.
 // Returns the body id spawned for each join, in order (0 when the world was full).
 std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record);
+// The same under game rules (server/rules/rules.hpp): the joins' bodies and the leaves go to
+// the rules first, the rules see the inputs before the step and the contact events after it.
+// The match and the replay both call this, so the rules' state replays bit for bit.
+std::vector<uint32_t> apply_tick(world::world& w, rules::rules& r, const tick_record& record);
 
 }  // namespace arena::match

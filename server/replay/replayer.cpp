@@ -5,7 +5,7 @@
 namespace arena::replay {
 
 replayer::replayer(reader r, const world::world_config& config, uint64_t seed)
-    : reader_(std::move(r)), world_(config, seed) {}
+    : reader_(std::move(r)), world_(config, seed), rules_(rules::make_rules(world_)) {}
 
 protocol::result<std::unique_ptr<replayer>> replayer::open(const std::string& path) {
     using r = protocol::result<std::unique_ptr<replayer>>;
@@ -23,13 +23,16 @@ replay_report replayer::run(const replay_options& options) {
     report.start_tick = world_.tick();
     const auto finish = [&](replay_report& rep) -> replay_report {
         rep.final_tick = world_.tick();
-        rep.final_hash = world_.hash();
+        rep.final_hash = rules::state_hash(world_, *rules_);
         return rep;
     };
     // Each recorded hash is compared with the world now; false on a mismatch.
     const auto check = [&](uint32_t tick, uint64_t expected) {
         ++report.hashes_checked;
-        const uint64_t actual = world_.hash();
+        // The start hash is the world's alone (make_header); the rules' state joins it from the first step.
+        const uint64_t actual = tick == report.start_tick && report.ticks_replayed == 0
+                                    ? world_.hash()
+                                    : rules::state_hash(world_, *rules_);
         if (actual != expected) report.mismatch = hash_mismatch{tick, expected, actual};
         return actual == expected;
     };
@@ -57,9 +60,9 @@ replay_report replayer::run(const replay_options& options) {
         if (auto* t = std::get_if<match::tick_record>(&next.value)) {
             // `until` stops before the next step, once that tick's Hash record (if any) is checked.
             if (reached_until()) break;
-            match::apply_tick(world_, *t);
+            match::apply_tick(world_, *rules_, *t);
             ++report.ticks_replayed;
-            if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
+            if (options.on_tick) options.on_tick(world_.tick(), rules::state_hash(world_, *rules_));
         } else if (auto* c = std::get_if<hash_check>(&next.value)) {
             if (!check(c->tick, c->hash)) return finish(report);
         } else {

@@ -11,6 +11,7 @@
 
 #include "protocol/result.hpp"
 #include "server/replay/reader.hpp"
+#include "server/rules/rules.hpp"
 #include "server/world/world.hpp"
 
 namespace arena::replay {
@@ -50,12 +51,14 @@ public:
 
     const header& file_header() const { return reader_.file_header(); }
     const world::world& state() const { return world_; }
+    const rules::rules& game_rules() const { return *rules_; }
 
 private:
     replayer(reader r, const world::world_config& config, uint64_t seed);
 
     reader reader_;
     world::world world_;
+    std::unique_ptr<rules::rules> rules_;
 };
 
 }  // namespace arena::replay

@@ -83,6 +83,9 @@ struct rock_config {
     uint32_t polygon_vertices = 0;  // 0: circles; 3 to 8: irregular convex polygons within the drawn radius
 };
 
+// The game rules a match plays this world by (server/rules/): sandbox rules keep no score.
+enum class game_rules : uint8_t { sandbox, asteroids };
+
 struct world_config {
     real dt = 1.0f / 60.0f;  // s, the fixed step
     enum integrator integrator = integrator::semi_implicit;
@@ -104,7 +107,8 @@ struct world_config {
     body_material player{};
     control_config control{};
     rock_config rocks{};
-    std::vector<body_config> bodies{};  // placed in order when the world is created
+    std::vector<body_config> bodies{};            // placed in order when the world is created
+    enum game_rules rules = game_rules::sandbox;  // the world ignores it; the match and replay read it
 };
 
 }  // namespace arena::world

@@ -69,6 +69,11 @@ uint64_t config_hash(const world_config& c) {
         h.add_vec2(b.velocity);
         h.add_u8(b.is_static);
     }
+    // Only rules other than the sandbox's: configs from before rules existed keep their hashes.
+    if (c.rules != game_rules::sandbox) {
+        h.add_u8(0x52);
+        h.add_u8(static_cast<uint8_t>(c.rules));
+    }
     return h.value();
 }
 

@@ -121,7 +121,7 @@ TEST_CASE("filters: a negative group never collides, a positive one always does"
     CHECK_FALSE(should_collide({.category = 1, .mask = 0, .group = 0}, {}));
 }
 
-TEST_CASE("a filter that is set is part of the hash; the default is not", "[world][filter]") {
+TEST_CASE("a filter that is set is part of the hash, the default is not", "[world][filter]") {
     world plain(space(), 1), filtered(space(), 1);
     add_ball(plain, {10, 10}, {0, 0});
     add_ball(filtered, {10, 10}, {0, 0}, 0.5f, {.category = 1, .mask = ~0u, .group = 0});
@@ -145,7 +145,7 @@ TEST_CASE("bodies added and removed between steps: ids are never reused", "[worl
     CHECK(w.bodies().size() == 1);
 }
 
-TEST_CASE("a pair that stays in contact reports once; apart and back again reports again", "[world][events]") {
+TEST_CASE("a pair that stays in contact reports once, apart and back again reports again", "[world][events]") {
     world w(space(), 1);
     w.set_contact_events(true);
     // Restitution 0, 1 m/s each way: they meet and rest against each other.

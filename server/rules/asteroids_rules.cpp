@@ -1,0 +1,375 @@
+#include "server/rules/asteroids_rules.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/world/broadphase.hpp"
+#include "server/world/trig.hpp"
+
+namespace arena::rules {
+
+using world::real;
+using world::vec2;
+
+namespace {
+
+// 1/√2: a piece of half the area has 1/√2 of the radius.
+constexpr real half_area_scale = 0.70710678f;
+
+// Keeps a ship's rng apart from anything else seeded by the world's hash.
+constexpr uint64_t rng_salt = 0x61737465726f6964ULL;  // "asteroid"
+
+}  // namespace
+
+asteroids_rules::asteroids_rules(world::world& w, const asteroids_params& params)
+    : params_(params), rng_(w.hash() ^ rng_salt) {
+    for (const world::body& b : w.bodies())
+        if (!b.is_static() && b.owner == 0) rocks_[b.id] = 3;
+    wave_size_ = static_cast<uint32_t>(rocks_.size());
+    w.set_contact_events(true);
+}
+
+void asteroids_rules::make_ship(world::world& w, uint32_t player_id, player& p, uint32_t body_id, bool invulnerable) {
+    p.ship = body_id;
+    p.last_ship = body_id;
+    p.state = ship_state::playing;
+    p.vulnerable_at = invulnerable ? w.tick() + params_.invulnerable_ticks : w.tick();
+    world::body* b = w.find(body_id);
+    if (!b) return;
+    // Its own bullets share its negative group: they never touch it.
+    b->filter = {category_ship, invulnerable ? 0u : ~0u, -static_cast<int32_t>(player_id)};
+}
+
+void asteroids_rules::on_joins(world::world& w, std::span<const uint32_t> owners, std::span<const uint32_t> bodies) {
+    for (size_t k = 0; k < owners.size() && k < bodies.size(); ++k) {
+        if (bodies[k] == 0) continue;
+        player& p = players_[owners[k]];
+        p.lives = params_.lives;
+        p.score.player = owners[k];
+        // A ship that joins beside a rock gets the respawn's grace too.
+        make_ship(w, owners[k], p, bodies[k], true);
+    }
+}
+
+void asteroids_rules::on_leaves(world::world& w, std::span<const uint32_t> bodies) {
+    if (bodies.empty()) return;
+    // One pass over the players against the sorted leaves: a tick of many leaves stays linear.
+    std::vector<uint32_t> leaving(bodies.begin(), bodies.end());
+    std::sort(leaving.begin(), leaving.end());
+    std::vector<uint32_t> gone;  // player ids, increasing
+    for (auto& [player_id, p] : players_) {
+        if (p.state == ship_state::out || !std::binary_search(leaving.begin(), leaving.end(), p.last_ship)) continue;
+        p.state = ship_state::out;
+        p.ship = 0;
+        gone.push_back(player_id);
+    }
+    // Their bullets go with them (the match removes the ships themselves).
+    std::vector<uint32_t> removals;
+    for (auto it = bullets_.begin(); it != bullets_.end();) {
+        if (std::binary_search(gone.begin(), gone.end(), it->second.owner)) {
+            removals.push_back(it->first);
+            it = bullets_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    w.remove_bodies(removals);
+}
+
+void asteroids_rules::before_step(world::world& w, const world::tick_inputs& inputs) {
+    // In body id order, whatever order the caller listed them in.
+    std::vector<uint32_t> firing;
+    for (const world::body_input& in : inputs)
+        if (in.input.buttons & button_fire) firing.push_back(in.body_id);
+    std::sort(firing.begin(), firing.end());
+    for (const uint32_t id : firing) {
+        const world::body* b = w.find(id);
+        if (!b) continue;
+        auto it = players_.find(b->owner);
+        if (it == players_.end() || it->second.ship != id) continue;
+        fire(w, it->first, it->second);
+    }
+}
+
+void asteroids_rules::fire(world::world& w, uint32_t player_id, player& p) {
+    if (w.tick() < p.next_fire) return;
+    uint32_t live = 0;
+    for (const auto& [id, bl] : bullets_) live += bl.owner == player_id ? 1 : 0;
+    if (live >= params_.max_bullets_per_ship) return;
+    world::body* ship = w.find(p.ship);
+    if (!ship) return;
+    const world::cos_sin r = world::compute_cos_sin(ship->angle);
+    const vec2 facing{r.c, r.s};
+    world::body_material m;
+    m.mass = params_.bullet_mass;
+    m.radius = params_.bullet_radius;
+    m.restitution = 0;
+    m.friction = 0;
+    m.drag_area = 0;
+    const real nose = ship->radius + params_.bullet_radius + 0.1f;
+    world::body bullet = world::make_body(m, ship->position + facing * nose);
+    bullet.owner = 0;  // nobody steers it
+    // The lecture's impulse both ways: Δv = J/m_bullet forwards, −J/m_ship back.
+    const vec2 impulse = facing * params_.bullet_impulse;
+    bullet.velocity = ship->velocity;
+    bullet.apply_impulse(impulse);
+    bullet.filter = {category_bullet, category_rock | category_ship, -static_cast<int32_t>(player_id)};
+    const vec2 recoil = -impulse;
+    ship->apply_impulse(recoil);  // `ship` may move in memory once the bullet is added
+    const std::optional<uint32_t> id = w.add_body(bullet);
+    if (!id) return;
+    bullets_[*id] = {player_id, w.tick() + params_.bullet_lifetime_ticks};
+    p.next_fire = w.tick() + params_.fire_cooldown_ticks;
+    ++p.score.shots;
+}
+
+asteroids_rules::player* asteroids_rules::player_of_ship(uint32_t body_id) {
+    for (auto& [id, p] : players_)
+        if (p.ship == body_id && p.state == ship_state::playing) return &p;
+    return nullptr;
+}
+
+void asteroids_rules::destroy_ship(world::world& w, uint32_t player_id, std::vector<uint32_t>& removals) {
+    player& p = players_[player_id];
+    removals.push_back(p.ship);
+    p.ship = 0;
+    ++p.score.deaths;
+    // `lives` counts the ships to come: the death after the last one ends the player's play.
+    if (p.lives > 0) {
+        --p.lives;
+        p.state = ship_state::respawning;
+        p.respawn_at = w.tick() + params_.respawn_ticks;
+    } else {
+        p.state = ship_state::out;
+    }
+}
+
+void asteroids_rules::split_rock(world::world& w, uint32_t id, std::vector<uint32_t>& removals) {
+    const uint32_t size = rocks_[id];
+    rocks_.erase(id);
+    removals.push_back(id);
+    const world::body* rock = w.find(id);
+    if (size <= 1 || !rock) return;
+    const world::body r = *rock;  // add_body moves the bodies
+    const world::shape parent = w.shape_of(r);
+    world::shape piece_shape = world::make_circle(parent.radius * half_area_scale);
+    if (parent.kind != world::shape_kind::circle) {
+        std::vector<vec2> corners;
+        for (uint8_t k = 0; k < parent.count; ++k) corners.push_back(parent.vertices[k] * half_area_scale);
+        const world::polygon_result made = world::make_polygon(corners, parent.radius * half_area_scale);
+        if (made.polygon) piece_shape = *made.polygon;
+    }
+    world::body_material m;
+    m.mass = r.mass * 0.5f;
+    m.restitution = r.restitution;
+    m.friction = r.friction;
+    m.drag_area = r.drag_area * half_area_scale;
+    // Across the rock's velocity (or across x for a rock at rest), one piece each way.
+    const real speed2 = r.velocity.squaredNorm();
+    vec2 across{0, 1};
+    if (speed2 > 0) across = vec2{-r.velocity.y(), r.velocity.x()} / std::sqrt(speed2);
+    for (const real side : {1.0f, -1.0f}) {
+        world::body piece = world::make_body(m, piece_shape, r.position);
+        const vec2 offset = across * (side * piece.radius);
+        piece.position = r.position + offset;
+        piece.angle = r.angle;
+        piece.angular_velocity = r.angular_velocity;
+        piece.velocity = r.velocity;
+        piece.apply_impulse(across * (side * params_.split_impulse));
+        const std::optional<uint32_t> made = w.add_body(piece, piece_shape);
+        if (made) rocks_[*made] = size - 1;
+    }
+}
+
+void asteroids_rules::after_step(world::world& w) {
+    std::vector<uint32_t> removals;
+    std::vector<uint32_t> consumed;  // bodies an earlier event of this step used up
+    const auto used = [&consumed](uint32_t id) {
+        return std::find(consumed.begin(), consumed.end(), id) != consumed.end();
+    };
+    const auto points = [this](uint32_t size) {
+        return size >= 3 ? params_.score_large : size == 2 ? params_.score_medium : params_.score_small;
+    };
+    for (const world::contact_event& e : w.contact_events()) {
+        if (used(e.a) || used(e.b)) continue;
+        uint32_t bullet = 0, rock = 0, ship = 0;
+        for (const uint32_t id : {e.a, e.b}) {
+            if (bullets_.count(id))
+                bullet = id;
+            else if (rocks_.count(id))
+                rock = id;
+            else if (player_of_ship(id))
+                ship = id;
+        }
+        if (bullet && rock) {
+            const uint32_t owner = bullets_[bullet].owner;
+            player& shooter = players_[owner];
+            shooter.score.score += points(rocks_[rock]);
+            ++shooter.score.hits;
+            bullets_.erase(bullet);
+            removals.push_back(bullet);
+            consumed.push_back(bullet);
+            consumed.push_back(rock);
+            split_rock(w, rock, removals);
+        } else if (bullet && ship) {
+            const uint32_t owner = bullets_[bullet].owner;
+            const uint32_t victim = w.find(ship)->owner;
+            player& shooter = players_[owner];
+            shooter.score.score += params_.score_ship;
+            ++shooter.score.hits;
+            ++shooter.score.kills;
+            bullets_.erase(bullet);
+            removals.push_back(bullet);
+            consumed.push_back(bullet);
+            consumed.push_back(ship);
+            destroy_ship(w, victim, removals);
+        } else if (rock && ship) {
+            consumed.push_back(ship);
+            destroy_ship(w, w.find(ship)->owner, removals);
+        }
+    }
+    const uint32_t now = w.tick();
+    for (auto it = bullets_.begin(); it != bullets_.end();) {
+        if (it->second.expires <= now) {
+            removals.push_back(it->first);
+            it = bullets_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    w.remove_bodies(removals);
+    for (auto& [id, p] : players_) {
+        if (p.state != ship_state::playing || p.vulnerable_at != now) continue;
+        if (world::body* b = w.find(p.ship)) b->filter.mask = ~0u;
+    }
+    respawn_due(w);
+    if (rocks_.empty()) spawn_wave(w);
+}
+
+void asteroids_rules::respawn_due(world::world& w) {
+    for (auto& [id, p] : players_) {
+        if (p.state != ship_state::respawning || p.respawn_at > w.tick()) continue;
+        const world::body_material& m = w.config().player;
+        world::body b = world::make_body(m, free_spot(w, m.radius, params_.spawn_clearance));
+        b.owner = id;
+        const std::optional<uint32_t> ship = w.add_body(b);
+        if (!ship) continue;  // the world is full: try again next tick
+        make_ship(w, id, p, *ship, true);
+    }
+}
+
+void asteroids_rules::spawn_wave(world::world& w) {
+    ++wave_size_;
+    const world::rock_config& rocks = w.config().rocks;
+    const uint32_t corners_per_rock = std::clamp<uint32_t>(rocks.polygon_vertices, 3, world::max_polygon_vertices);
+    const real radius = params_.wave_rock_radius;
+    for (uint32_t k = 0; k < wave_size_; ++k) {
+        const vec2 at = free_spot(w, radius, params_.spawn_clearance);
+        std::vector<vec2> corners;
+        for (uint32_t c = 0; c < corners_per_rock; ++c) {
+            const real distance = radius * rng_.uniform(0.6f, 1.0f);
+            const world::cos_sin dir =
+                world::compute_cos_sin(2 * world::pi * static_cast<real>(c) / static_cast<real>(corners_per_rock));
+            corners.push_back(vec2{dir.c, dir.s} * distance);
+        }
+        // One draw per statement: argument evaluation order differs between compilers.
+        const real vx = rng_.uniform(-rocks.max_speed, rocks.max_speed);
+        const real vy = rng_.uniform(-rocks.max_speed, rocks.max_speed);
+        const world::polygon_result made = world::make_polygon(corners);
+        const world::shape s = made.polygon ? *made.polygon : world::make_circle(radius);
+        world::body b = world::make_body(rocks.material, s, at);
+        b.velocity = {vx, vy};
+        const std::optional<uint32_t> id = w.add_body(b, s);
+        if (id) rocks_[*id] = 3;
+    }
+}
+
+vec2 asteroids_rules::free_spot(const world::world& w, real radius, real clearance) {
+    const world::world_config& c = w.config();
+    const vec2 lo{radius, radius};
+    const vec2 hi = (c.size - lo).cwiseMax(lo);
+    vec2 p{0, 0};
+    for (int attempt = 0; attempt < 32; ++attempt) {
+        const real x = rng_.uniform(lo.x(), hi.x());
+        const real y = rng_.uniform(lo.y(), hi.y());
+        p = {x, y};
+        bool free = true;
+        for (const world::body& b : w.bodies()) {
+            const real reach = b.radius + radius + clearance;
+            if (world::displacement(p, b.position, c).squaredNorm() < reach * reach) {
+                free = false;
+                break;
+            }
+        }
+        if (free) break;
+    }
+    return p;
+}
+
+uint32_t asteroids_rules::body_of(uint32_t player) const {
+    const auto it = players_.find(player);
+    return it == players_.end() ? 0 : it->second.ship;
+}
+
+uint32_t asteroids_rules::rock_size(uint32_t id) const {
+    const auto it = rocks_.find(id);
+    return it == rocks_.end() ? 0 : it->second;
+}
+
+uint32_t asteroids_rules::bullet_owner(uint32_t id) const {
+    const auto it = bullets_.find(id);
+    return it == bullets_.end() ? 0 : it->second.owner;
+}
+
+bool asteroids_rules::invulnerable(const world::world& w, uint32_t player) const {
+    const auto it = players_.find(player);
+    if (it == players_.end() || it->second.state != ship_state::playing) return false;
+    const world::body* b = w.find(it->second.ship);
+    return b && b->filter.mask == 0;
+}
+
+void asteroids_rules::hash(world::fnv1a& h) const {
+    h.add_u64(rng_.state());
+    h.add_u32(wave_size_);
+    h.add_u32(static_cast<uint32_t>(players_.size()));
+    for (const auto& [id, p] : players_) {
+        h.add_u32(id);
+        h.add_u32(p.ship);
+        h.add_u32(p.last_ship);
+        h.add_u8(static_cast<uint8_t>(p.state));
+        h.add_u32(p.lives);
+        h.add_u32(p.respawn_at);
+        h.add_u32(p.vulnerable_at);
+        h.add_u32(p.next_fire);
+        h.add_u32(p.score.score);
+        h.add_u32(p.score.kills);
+        h.add_u32(p.score.deaths);
+        h.add_u32(p.score.shots);
+        h.add_u32(p.score.hits);
+    }
+    h.add_u32(static_cast<uint32_t>(bullets_.size()));
+    for (const auto& [id, b] : bullets_) {
+        h.add_u32(id);
+        h.add_u32(b.owner);
+        h.add_u32(b.expires);
+    }
+    h.add_u32(static_cast<uint32_t>(rocks_.size()));
+    for (const auto& [id, size] : rocks_) {
+        h.add_u32(id);
+        h.add_u32(size);
+    }
+}
+
+std::vector<score_line> asteroids_rules::scoreboard() const {
+    std::vector<score_line> lines;
+    for (const auto& [id, p] : players_) {
+        score_line s = p.score;
+        s.player = id;
+        s.lives = p.lives;
+        s.out = p.state == ship_state::out;
+        lines.push_back(s);
+    }
+    return lines;
+}
+
+}  // namespace arena::rules

@@ -1,0 +1,107 @@
+#pragma once
+// Asteroids as the arcade game plays, on the lecture's physics (the impulse J changes a
+// velocity by J/m at once, both ways):
+// - Fire (Input.buttons bit 1): a bullet leaves the ship's nose with the impulse J along the
+//   facing (Δv = J/m_bullet on top of the ship's velocity) and the ship recoils by −J
+//   (Δv = −J/m_ship). A cooldown, a lifetime and a cap on live bullets per ship. Bullets pass
+//   through their shooter (a shared negative filter group) and each other (masks).
+// - Rocks: a bullet that hits a rock removes both; large splits into two medium, medium into
+//   two small, small is gone. The pieces share the rock's mass and leave symmetrically about
+//   its velocity with a split impulse (momentum conserved). 20, 50, 100 points. When every
+//   rock is gone, a wave of one more large rock than the last spawns away from the ships.
+// - Ships: hit by a rock or another player's bullet, a ship loses a life and its body goes;
+//   it respawns at a free spot 120 ticks later, passing through everything for 120 ticks.
+//   Three lives (ships after the first), so the fourth death puts the player out for the rest
+//   of the match. Shooting a ship scores 200.
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "server/rules/rules.hpp"
+#include "server/world/rng.hpp"
+
+namespace arena::rules {
+
+inline constexpr uint8_t button_fire = 1u << 1;
+
+// Filter categories (world/filter.hpp). Rocks keep the default category 1.
+inline constexpr uint32_t category_rock = 1u << 0;
+inline constexpr uint32_t category_ship = 1u << 1;
+inline constexpr uint32_t category_bullet = 1u << 2;
+
+struct asteroids_params {
+    world::real bullet_impulse = 2.0f;    // N·s, J
+    world::real bullet_mass = 0.05f;      // kg: 40 m/s from J = 2 N·s
+    world::real bullet_radius = 0.2f;     // m
+    uint32_t fire_cooldown_ticks = 6;     // 0.1 s at 60 Hz
+    uint32_t bullet_lifetime_ticks = 72;  // 1.2 s at 60 Hz
+    uint32_t max_bullets_per_ship = 4;    // live at once
+    uint32_t lives = 3;                   // respawns: the fourth death is the last
+    uint32_t respawn_ticks = 120;         // 2 s at 60 Hz
+    uint32_t invulnerable_ticks = 120;    // 2 s after a respawn
+    world::real split_impulse = 20.0f;    // N·s given to each piece, across the rock's velocity
+    world::real wave_rock_radius = 5.0f;  // m, a new wave's large rocks
+    world::real spawn_clearance = 15.0f;  // m kept free around a respawn or a wave's rock
+    uint32_t score_large = 20, score_medium = 50, score_small = 100, score_ship = 200;
+};
+
+class asteroids_rules : public rules {
+public:
+    // Every moving body of `w` without an owner is a large rock; contact events go on.
+    explicit asteroids_rules(world::world& w, const asteroids_params& params = {});
+
+    void on_joins(world::world& w, std::span<const uint32_t> owners, std::span<const uint32_t> bodies) override;
+    void on_leaves(world::world& w, std::span<const uint32_t> bodies) override;
+    void before_step(world::world& w, const world::tick_inputs& inputs) override;
+    void after_step(world::world& w) override;
+
+    uint32_t body_of(uint32_t player) const override;
+    bool has_state() const override { return true; }
+    void hash(world::fnv1a& h) const override;
+    std::vector<score_line> scoreboard() const override;
+
+    const asteroids_params& params() const { return params_; }
+    // Rock size of body `id`: 3 large, 2 medium, 1 small, 0 not a rock.
+    uint32_t rock_size(uint32_t id) const;
+    // The owner of bullet `id`, or 0 when it is not a live bullet.
+    uint32_t bullet_owner(uint32_t id) const;
+    // True while `player`'s ship passes through everything after a respawn.
+    bool invulnerable(const world::world& w, uint32_t player) const;
+    uint32_t wave() const { return wave_size_; }
+
+private:
+    enum class ship_state : uint8_t { playing, respawning, out };
+    struct player {
+        uint32_t ship = 0;       // body id while playing, else 0
+        uint32_t last_ship = 0;  // the latest ship's id: the match names a leaving player by it
+        ship_state state = ship_state::playing;
+        uint32_t lives = 0;
+        uint32_t respawn_at = 0;     // world tick of the respawn while respawning
+        uint32_t vulnerable_at = 0;  // world tick from which it collides again
+        uint32_t next_fire = 0;      // world tick from which it may fire
+        score_line score;
+    };
+    struct bullet {
+        uint32_t owner = 0;
+        uint32_t expires = 0;  // world tick at which it is removed
+    };
+
+    void make_ship(world::world& w, uint32_t player_id, player& p, uint32_t body_id, bool invulnerable);
+    void fire(world::world& w, uint32_t player_id, player& p);
+    void destroy_ship(world::world& w, uint32_t player_id, std::vector<uint32_t>& removals);
+    void split_rock(world::world& w, uint32_t id, std::vector<uint32_t>& removals);
+    void respawn_due(world::world& w);
+    void spawn_wave(world::world& w);
+    // A spot at least `clearance` beyond every body's edge (a few tries; the last otherwise).
+    world::vec2 free_spot(const world::world& w, world::real radius, world::real clearance);
+    player* player_of_ship(uint32_t body_id);
+
+    asteroids_params params_;
+    world::rng rng_;
+    std::map<uint32_t, player> players_;  // by player id
+    std::map<uint32_t, bullet> bullets_;  // by body id
+    std::map<uint32_t, uint32_t> rocks_;  // body id → size
+    uint32_t wave_size_ = 0;              // large rocks in the last wave
+};
+
+}  // namespace arena::rules

@@ -1,0 +1,64 @@
+#pragma once
+// Game rules: what a match means (who scores, who dies, what spawns), between the match and
+// the world. The match calls them every tick through apply_tick (server/match/tick_record.hpp),
+// and the replay calls the same function, so a recording reproduces the rules' state bit for
+// bit. Rules change the world only through the calls below, between steps; they read no clock
+// and do no I/O (tests/layers checks this folder like the world and the match).
+//
+// A game brings its own rules by deriving from `rules`, naming itself in world_config::rules
+// (the config's JSON "rules"), and adding a case to make_rules().
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "server/world/hash.hpp"
+#include "server/world/input.hpp"
+#include "server/world/world.hpp"
+
+namespace arena::rules {
+
+// One player's line of the scoreboard.
+struct score_line {
+    uint32_t player = 0;  // player id (the owner of its bodies)
+    uint32_t score = 0;
+    uint32_t kills = 0;
+    uint32_t deaths = 0;
+    uint32_t shots = 0;
+    uint32_t hits = 0;
+    uint32_t lives = 0;
+    bool out = false;  // no lives left, or left the match
+};
+
+class rules {
+public:
+    virtual ~rules() = default;
+
+    // The bodies world::spawn_players gave the tick's joins (0: the world was full).
+    virtual void on_joins(world::world&, std::span<const uint32_t> /*owners*/, std::span<const uint32_t> /*bodies*/) {}
+    // Bodies the match is about to remove because their players left.
+    virtual void on_leaves(world::world&, std::span<const uint32_t> /*bodies*/) {}
+    // Before the step, with the inputs it will apply (in any order): fire, spawn, push.
+    virtual void before_step(world::world&, const world::tick_inputs& /*inputs*/) {}
+    // After the step: read world::contact_events(), remove and spawn bodies, keep score.
+    virtual void after_step(world::world&) {}
+
+    // The body `player` controls now, or 0 when it has none of the rules' making (sandbox
+    // rules: the body the match spawned stays the player's).
+    virtual uint32_t body_of(uint32_t /*player*/) const { return 0; }
+    // False: the rules keep no state, and the state hash is the world's own.
+    virtual bool has_state() const { return false; }
+    // Every field of the rules' state, in a fixed order.
+    virtual void hash(world::fnv1a&) const {}
+    // Players in id order (empty for sandbox rules).
+    virtual std::vector<score_line> scoreboard() const { return {}; }
+};
+
+// The rules `config.rules` names, set up on `w` (a new world built from `config`).
+std::unique_ptr<rules> make_rules(world::world& w);
+
+// The hash recordings and replays compare: the world's, followed by the rules' state when
+// they have any (so sandbox worlds keep the hashes they always had).
+uint64_t state_hash(const world::world& w, const rules& r);
+
+}  // namespace arena::rules

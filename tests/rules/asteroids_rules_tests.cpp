@@ -1,0 +1,360 @@
+// Asteroids rules (server/rules/asteroids_rules.hpp): each rule in closed form, then a
+// scripted match through apply_tick against a golden scoreboard and state hash.
+#include <catch2/catch.hpp>
+
+#include "server/config/config_json.hpp"
+#include "server/match/tick_record.hpp"
+#include "server/rules/asteroids_rules.hpp"
+#include "server/world/presets.hpp"
+#include "server/world/trig.hpp"
+
+using namespace arena;
+using world::real;
+using world::vec2;
+
+namespace {
+
+// The asteroids preset played by the Asteroids rules.
+world::world_config asteroids_game() {
+    world::world_config c = world::asteroids_preset();
+    c.rules = world::game_rules::asteroids;
+    return c;
+}
+
+// The asteroids preset with one still rock of radius 5 in the middle of the field, or none.
+world::world_config one_rock(uint32_t rocks = 1) {
+    world::world_config c = world::asteroids_preset();
+    c.rocks.count = rocks;
+    c.rocks.min_radius = 5;
+    c.rocks.max_radius = 5;
+    c.rocks.max_speed = 0;
+    return c;
+}
+
+struct game {
+    world::world w;
+    rules::asteroids_rules r;
+    explicit game(const world::world_config& c) : w(c, 7), r(w) {}
+
+    uint32_t join(uint32_t player) {
+        const uint32_t owners[] = {player};
+        const std::vector<uint32_t> bodies = w.spawn_players(owners);
+        r.on_joins(w, owners, bodies);
+        return bodies[0];
+    }
+    void step(const world::tick_inputs& inputs = {}) {
+        r.before_step(w, inputs);
+        w.step(inputs);
+        r.after_step(w);
+    }
+    const rules::score_line score(uint32_t player) const {
+        for (const rules::score_line& s : r.scoreboard())
+            if (s.player == player) return s;
+        return {};
+    }
+    uint32_t rock_count() const {
+        uint32_t n = 0;
+        for (const world::body& b : w.bodies()) n += r.rock_size(b.id) != 0 ? 1 : 0;
+        return n;
+    }
+    // Puts `player`'s ship `distance` m from the edge of rock `rock`, still, facing it, and
+    // fires once: the rock is hit within a few ticks. The rock is stopped first.
+    void shoot(uint32_t player, uint32_t rock, real distance = 6) {
+        world::body* target = w.find(rock);
+        REQUIRE(target);
+        target->velocity = {0, 0};
+        target->angular_velocity = 0;
+        world::body* ship = w.find(r.body_of(player));
+        REQUIRE(ship);
+        ship->position = target->position - vec2{target->radius + ship->radius + distance, 0};
+        ship->velocity = {0, 0};
+        ship->angular_velocity = 0;
+        ship->angle = 0;
+        const uint32_t ship_id = ship->id;
+        // Past the cooldown.
+        for (uint32_t k = 0; k < r.params().fire_cooldown_ticks; ++k) step();
+        ship = w.find(ship_id);
+        ship->position = target->position - vec2{target->radius + ship->radius + distance, 0};
+        ship->velocity = {0, 0};
+        ship->angle = 0;
+        world::tick_inputs fire{{ship_id, {0, 0, rules::button_fire}}};
+        step(fire);
+        for (int k = 0; k < 30 && r.rock_size(rock) != 0; ++k) step();
+        REQUIRE(r.rock_size(rock) == 0);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a bullet leaves at J/m_bullet and the ship recoils at exactly -J/m_ship", "[rules][asteroids]") {
+    game g(one_rock(0));
+    const uint32_t ship = g.join(1);
+    g.w.find(ship)->angle = 0.5f;
+    const world::cos_sin r = world::compute_cos_sin(0.5f);
+    const vec2 facing{r.c, r.s};
+    const rules::asteroids_params& p = g.r.params();
+    g.r.before_step(g.w, {{ship, {0, 0, rules::button_fire}}});
+    REQUIRE(g.w.bodies().size() == 2);
+    const world::body& bullet = g.w.bodies()[1];
+    CHECK(g.r.bullet_owner(bullet.id) == 1);
+    const vec2 j = facing * p.bullet_impulse;
+    // From rest: the whole velocity is the impulse over the mass, both ways.
+    CHECK(bullet.velocity == vec2(j * (1.0f / p.bullet_mass)));
+    CHECK(bullet.velocity.norm() == Approx(p.bullet_impulse / p.bullet_mass));
+    const world::body& s = *g.w.find(ship);
+    CHECK(s.velocity == vec2(-j * s.inv_mass));
+    CHECK(s.velocity.norm() == Approx(p.bullet_impulse / g.w.config().player.mass));
+    // Its own bullet shares the ship's negative group: it passes through its shooter.
+    CHECK_FALSE(world::should_collide(s.filter, bullet.filter));
+    CHECK(g.score(1).shots == 1);
+}
+
+TEST_CASE("fire keeps a cooldown, a lifetime and a cap on live bullets", "[rules][asteroids]") {
+    game g(one_rock(0));
+    const uint32_t ship = g.join(1);
+    const rules::asteroids_params& p = g.r.params();
+    const world::tick_inputs fire{{ship, {0, 0, rules::button_fire}}};
+    uint32_t first_fire_tick = 0;
+    std::vector<uint32_t> fired_at;
+    for (uint32_t k = 0; k < 60; ++k) {
+        const uint32_t before = g.score(1).shots;
+        const uint32_t tick = g.w.tick();
+        // Keep the ship still and in the middle, so it meets nothing.
+        g.w.find(ship)->velocity = {0, 0};
+        g.w.find(ship)->position = {200, 200};
+        g.step(fire);
+        if (g.score(1).shots != before) fired_at.push_back(tick);
+    }
+    first_fire_tick = fired_at.front();
+    // Every cooldown until the cap, then nothing while the four are alive (72 ticks > 60).
+    REQUIRE(fired_at.size() == p.max_bullets_per_ship);
+    for (size_t k = 0; k < fired_at.size(); ++k) CHECK(fired_at[k] == first_fire_tick + k * p.fire_cooldown_ticks);
+    // The first bullet goes exactly bullet_lifetime_ticks after it was fired.
+    const uint32_t first_bullet = ship + 1;
+    while (g.w.tick() < first_fire_tick + p.bullet_lifetime_ticks - 1) {
+        g.step();
+        REQUIRE(g.w.find(first_bullet));
+    }
+    g.step();
+    CHECK_FALSE(g.w.find(first_bullet));
+}
+
+TEST_CASE("a split conserves mass and momentum, small rocks go, scores by size", "[rules][asteroids]") {
+    game g(one_rock(1));
+    g.join(1);
+    for (int k = 0; k < 121; ++k) g.step();  // past the join's invulnerability
+    const uint32_t rock = 1;
+    REQUIRE(g.r.rock_size(rock) == 3);
+    // Watch the step in which the bullet hits: the rock as it left the step, then the pieces.
+    world::body* target = g.w.find(rock);
+    target->velocity = {3, -1};
+    const real mass = target->mass;
+    g.shoot(1, rock);
+    std::vector<const world::body*> pieces;
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) == 2) pieces.push_back(&b);
+    REQUIRE(pieces.size() == 2);
+    CHECK(pieces[0]->mass + pieces[1]->mass == mass);
+    CHECK(g.score(1).score == 20);
+    CHECK(g.score(1).hits == 1);
+    // Symmetric about the rock's velocity: their mean is it, their difference is across it.
+    const vec2 mean = (pieces[0]->velocity + pieces[1]->velocity) * 0.5f;
+    const vec2 apart = pieces[0]->velocity - pieces[1]->velocity;
+    CHECK(apart.dot(mean) == Approx(0).margin(1e-3));
+    CHECK(apart.norm() == Approx(2 * g.r.params().split_impulse / pieces[0]->mass));
+
+    // Medium → two small (50), small → nothing (100).
+    const uint32_t medium = pieces[0]->id;
+    g.shoot(1, medium);
+    CHECK(g.score(1).score == 70);
+    uint32_t small = 0;
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) == 1) small = b.id;
+    REQUIRE(small != 0);
+    const uint32_t rocks_before = g.rock_count();
+    const size_t bodies_before = g.w.bodies().size();
+    g.shoot(1, small);
+    CHECK(g.score(1).score == 170);
+    CHECK(g.score(1).hits == 3);
+    CHECK(g.rock_count() == rocks_before - 1);
+    CHECK(g.w.bodies().size() == bodies_before - 1);  // the rock; its bullet was already gone
+}
+
+TEST_CASE("momentum across a split, measured in the step of the hit", "[rules][asteroids]") {
+    // The rules' split alone: the rock after the step (the bullet's push included) against
+    // the two pieces that replace it.
+    game g(one_rock(1));
+    g.join(1);
+    for (int k = 0; k < 121; ++k) g.step();
+    world::body* target = g.w.find(1);
+    target->velocity = {2, 5};
+    target->angular_velocity = 0;
+    world::body* ship = g.w.find(g.r.body_of(1));
+    ship->position = target->position - vec2{target->radius + ship->radius + 1, 0};
+    ship->velocity = {0, 0};
+    ship->angle = 0;
+    const uint32_t ship_id = ship->id;
+    g.r.before_step(g.w, {{ship_id, {0, 0, rules::button_fire}}});
+    vec2 before{0, 0};
+    for (int k = 0; k < 30; ++k) {
+        g.w.step({});
+        if (const world::body* rock = g.w.find(1)) before = rock->velocity * rock->mass;
+        g.r.after_step(g.w);
+        if (g.r.rock_size(1) == 0) break;
+    }
+    REQUIRE(g.r.rock_size(1) == 0);
+    vec2 after{0, 0};
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) == 2) after += b.velocity * b.mass;
+    CHECK(after.x() == Approx(before.x()).epsilon(1e-5));
+    CHECK(after.y() == Approx(before.y()).epsilon(1e-5));
+}
+
+TEST_CASE("a ship hit by a rock respawns exactly 120 ticks later, invulnerable for 120, and the fourth death ends play",
+          "[rules][asteroids]") {
+    game g(one_rock(1));
+    g.join(1);
+    CHECK(g.r.invulnerable(g.w, 1));
+    const auto ram = [&g] {
+        while (g.r.invulnerable(g.w, 1)) g.step();
+        world::body* rock = g.w.find(1);
+        rock->velocity = {0, 0};
+        world::body* ship = g.w.find(g.r.body_of(1));
+        ship->position = rock->position - vec2{rock->radius + ship->radius + 0.5f, 0};
+        ship->velocity = {10, 0};
+        for (int k = 0; k < 30 && g.r.body_of(1) != 0; ++k) g.step();
+        REQUIRE(g.r.body_of(1) == 0);
+        return g.w.tick();
+    };
+    for (uint32_t death = 1; death <= 3; ++death) {
+        const uint32_t died = ram();
+        CHECK(g.score(1).deaths == death);
+        CHECK(g.score(1).lives == 3 - death);
+        while (g.r.body_of(1) == 0) g.step();
+        CHECK(g.w.tick() == died + 120);
+        CHECK(g.r.invulnerable(g.w, 1));
+        // It passes through everything: its mask is empty until 120 ticks on.
+        for (int k = 0; k < 119; ++k) g.step();
+        CHECK(g.r.invulnerable(g.w, 1));
+        g.step();
+        CHECK_FALSE(g.r.invulnerable(g.w, 1));
+    }
+    ram();
+    CHECK(g.score(1).deaths == 4);
+    CHECK(g.score(1).out);
+    for (int k = 0; k < 300; ++k) g.step();
+    CHECK(g.r.body_of(1) == 0);
+}
+
+TEST_CASE("shooting another player's ship scores 200 and a kill", "[rules][asteroids]") {
+    game g(one_rock(0));
+    g.join(1);
+    g.join(2);
+    for (int k = 0; k < 121; ++k) g.step();
+    world::body* a = g.w.find(g.r.body_of(1));
+    world::body* b = g.w.find(g.r.body_of(2));
+    a->position = {100, 100};
+    a->velocity = {0, 0};
+    a->angle = 0;
+    b->position = {110, 100};
+    b->velocity = {0, 0};
+    const uint32_t shooter = a->id;
+    g.step({{shooter, {0, 0, rules::button_fire}}});
+    for (int k = 0; k < 30 && g.r.body_of(2) != 0; ++k) g.step();
+    CHECK(g.r.body_of(2) == 0);
+    CHECK(g.score(1).score == 200);
+    CHECK(g.score(1).kills == 1);
+    CHECK(g.score(1).hits == 1);
+    CHECK(g.score(2).deaths == 1);
+}
+
+TEST_CASE("when every rock is gone a wave of one more large rock spawns away from the ships", "[rules][asteroids]") {
+    game g(one_rock(0));
+    g.join(1);
+    g.step();
+    // No rocks at the start: the first wave (of one) spawns at once; the wave counts up.
+    CHECK(g.r.wave() == 1);
+    CHECK(g.rock_count() == 1);
+    const world::body* ship = g.w.find(g.r.body_of(1));
+    for (const world::body& b : g.w.bodies()) {
+        if (g.r.rock_size(b.id) == 0) continue;
+        CHECK(g.r.rock_size(b.id) == 3);
+        CHECK(world::displacement(b.position, ship->position, g.w.config()).norm() >
+              b.radius + ship->radius + g.r.params().spawn_clearance);
+    }
+}
+
+TEST_CASE("sandbox rules keep no state: the state hash is the world's", "[rules]") {
+    world::world w(world::platformer_preset(), 3);
+    const std::unique_ptr<rules::rules> r = rules::make_rules(w);
+    CHECK_FALSE(r->has_state());
+    match::tick_record t;
+    t.joins = {1};
+    match::apply_tick(w, *r, t);
+    CHECK(rules::state_hash(w, *r) == w.hash());
+    CHECK(r->scoreboard().empty());
+    // A config that names the Asteroids rules gets them, and its JSON carries them.
+    world::world a(asteroids_game(), 3);
+    CHECK(rules::make_rules(a)->has_state());
+    const auto back = config::parse_config_json(config::config_to_json(asteroids_game()));
+    CHECK(std::get<world::world_config>(back).rules == world::game_rules::asteroids);
+    CHECK(config::config_to_json(world::platformer_preset()).find("\"rules\"") == std::string::npos);
+}
+
+namespace {
+
+// Four players at tick 0; each turns, thrusts and fires on its own fixed pattern.
+struct scripted_result {
+    uint64_t hash = 0;
+    std::vector<rules::score_line> board;
+};
+
+scripted_result scripted_match(uint32_t ticks) {
+    world::world w(asteroids_game(), 2026);
+    const std::unique_ptr<rules::rules> r = rules::make_rules(w);
+    REQUIRE(r->has_state());
+    std::vector<uint32_t> ships;
+    for (uint32_t t = 0; t < ticks; ++t) {
+        match::tick_record rec;
+        rec.tick = w.tick();
+        if (t == 0) rec.joins = {1, 2, 3, 4};
+        for (uint32_t p = 1; p <= 4; ++p) {
+            const uint32_t body = r->body_of(p);
+            if (body == 0) continue;
+            world::player_input in;
+            in.thrust = (t / (40 + 10 * p)) % 2 == 0 ? 0.6f : 0.0f;
+            in.turn = (t / (25 + 5 * p)) % 3 == 0 ? 0.5f : ((t / (25 + 5 * p)) % 3 == 1 ? -0.4f : 0.0f);
+            in.buttons = (t + p) % 4 == 0 ? rules::button_fire : 0;
+            rec.inputs.push_back({body, in});
+        }
+        match::apply_tick(w, *r, rec);
+    }
+    return {rules::state_hash(w, *r), r->scoreboard()};
+}
+
+}  // namespace
+
+TEST_CASE("a scripted asteroids match ends at a golden scoreboard and hash", "[rules][asteroids][golden]") {
+    const scripted_result a = scripted_match(1800);
+    const scripted_result b = scripted_match(1800);
+    CHECK(a.hash == b.hash);
+    // Written when the rules were made (g++ -O3); a change to the physics or the rules that
+    // alters them on purpose updates them in the same commit.
+    CHECK(a.hash == 0xc0edf7020bda3144ULL);
+    struct expected {
+        uint32_t score, kills, deaths, shots, hits, lives;
+    };
+    const expected golden[] = {
+        {200, 1, 0, 101, 1, 3}, {1230, 0, 0, 110, 19, 3}, {490, 0, 0, 104, 8, 3}, {420, 0, 2, 91, 6, 1}};
+    REQUIRE(a.board.size() == 4);
+    for (size_t k = 0; k < 4; ++k) {
+        INFO("player " << a.board[k].player);
+        CHECK(a.board[k].player == k + 1);
+        CHECK(a.board[k].score == golden[k].score);
+        CHECK(a.board[k].kills == golden[k].kills);
+        CHECK(a.board[k].deaths == golden[k].deaths);
+        CHECK(a.board[k].shots == golden[k].shots);
+        CHECK(a.board[k].hits == golden[k].hits);
+        CHECK(a.board[k].lives == golden[k].lives);
+    }
+}
