@@ -9,6 +9,7 @@
 #include <string>
 
 #include "server/cli_helpers.hpp"
+#include "server/config/scoreboard_json.hpp"
 #include "server/replay/replayer.hpp"
 
 using namespace arena;
@@ -46,13 +47,16 @@ void print_summary(std::FILE* out, const replay::header& h, const replay::replay
 int main(int argc, char** argv) {
     CLI::App app{"arena-replay: re-simulate a recorded Arena session and check every recorded hash", "arena-replay"};
     std::string path;
-    bool dump_hashes = false, state = false;
+    bool dump_hashes = false, state = false, scoreboard = false;
     uint32_t until = 0;
     app.add_option("file", path, "replay file written by arena-server --record")->required();
     app.add_flag("--dump-hashes", dump_hashes,
                  "print tick,hash (16 hex digits) for the start tick and every tick after");
     auto* until_opt = app.add_option("--until", until, "stop when the world reaches this tick");
     app.add_flag("--state", state, "print every body where the replay stops (see --until), as CSV");
+    app.add_flag("--scoreboard", scoreboard,
+                 "print the game's scoreboard where the replay stops, as JSON (what --stats-json's scoreboard holds, "
+                 "without names: recordings hold player ids)");
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
 
     auto opened = replay::replayer::open(path);
@@ -75,8 +79,12 @@ int main(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     if (state) print_state(rp.state());
-    // stdout is data when --dump-hashes or --state asked for some; the summary then goes to stderr.
-    print_summary(dump_hashes || state ? stderr : stdout, rp.file_header(), report, seconds);
+    if (scoreboard) {
+        const std::vector<rules::score_line> lines = rp.game_rules().scoreboard();
+        std::printf("%s\n", config::scoreboard_json(lines).c_str());
+    }
+    // stdout is data when --dump-hashes, --state or --scoreboard asked for some; the summary then goes to stderr.
+    print_summary(dump_hashes || state || scoreboard ? stderr : stdout, rp.file_header(), report, seconds);
     std::fflush(stdout);
     if (report.mismatch) {
         const replay::hash_mismatch& m = *report.mismatch;

@@ -350,6 +350,7 @@ void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector
             continue;
         }
         p.body_id = bodies[i];
+        names_[owners[i]] = p.name;
         ++counters_.joins;
         counters_.players_peak = std::max<uint32_t>(counters_.players_peak, static_cast<uint32_t>(players_.size()));
         if (p.who) send_welcome(owners[i], p);
@@ -407,8 +408,8 @@ void match::send_snapshot(player& p) {
 std::vector<match::named_score> match::scoreboard() const {
     std::vector<named_score> out;
     for (const rules::score_line& line : rules_->scoreboard()) {
-        const auto it = players_.find(line.player);
-        out.push_back({it == players_.end() ? std::string() : it->second.name, line});
+        const auto it = names_.find(line.player);
+        out.push_back({it == names_.end() ? std::string() : it->second, line});
     }
     return out;
 }
@@ -419,6 +420,11 @@ match_counters match::counters() const {
     total.players = live_player_count();  // live connections only: bodies in the grace are counted apart
     total.players_in_grace = players_in_grace();
     total.max_players = config_.max_players;
+    for (const rules::score_line& line : rules_->scoreboard()) {
+        total.shots += line.shots;
+        total.hits += line.hits;
+        total.kills += line.kills;
+    }
     total.snapshots = fanout_.counters();
     for (const auto& [id, p] : players_) {
         total.input_underruns += p.inputs.underruns();

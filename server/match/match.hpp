@@ -69,6 +69,9 @@ struct match_counters {
     uint64_t players = 0;                              // players in the match now with a live connection
     uint64_t players_in_grace = 0;                     // dropped players whose bodies wait for them
     uint64_t max_players = 0;                          // the limit
+    uint64_t shots = 0;                                // the game rules' scoreboard, summed: bullets fired
+    uint64_t hits = 0;                                 // shots that hit a rock or a ship
+    uint64_t kills = 0;                                // ships destroyed by another player's bullet
 };
 
 // Every figure of `c`, to `out`: the one place that names them for the stats and /metrics.
@@ -171,7 +174,8 @@ private:
     logger log_;
     admission admission_;
     world::world world_;
-    std::unique_ptr<rules::rules> rules_;  // set up on world_, before anything else touches it
+    std::unique_ptr<rules::rules> rules_;    // set up on world_, before anything else touches it
+    std::map<uint32_t, std::string> names_;  // every player who joined, for the scoreboard after they left
     std::string world_config_json_;
     uint64_t world_config_hash_;
     client_map clients_;

@@ -7,6 +7,10 @@ void report(const match_counters& c, figure_sink& out) {
     // The log line counts a player in the grace too: its body is still in the match.
     out.gauge({"", "", "", "players"}, c.players + c.players_in_grace);
     out.counter({"ticks", "arena_ticks_total", "World steps run.", "ticks"}, c.ticks);
+    // The game rules' scoreboard summed over the players (zero under sandbox rules).
+    out.counter({"shots", "arena_shots_total", "Bullets fired by every player."}, c.shots);
+    out.counter({"hits", "arena_hits_total", "Bullets that hit a rock or a ship."}, c.hits);
+    out.counter({"kills", "arena_kills_total", "Ships destroyed by another player's bullet."}, c.kills);
     out.gauge({"", "arena_players_connected", "Players in the match with a live connection."}, c.players);
     out.gauge({"", "arena_players_in_grace", "Dropped players whose bodies wait for them to reconnect."},
               c.players_in_grace);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/version.hpp"
+#include "server/config/scoreboard_json.hpp"
 #include "server/net/log.hpp"
 #include "server/net/session.hpp"
 #include "server/net/stats_json.hpp"
@@ -290,6 +291,14 @@ void server::write_stats_json(const std::string& path) const {
         {"bytes_out_per_s", seconds > 0 ? static_cast<double>(p.bytes_out) / seconds : 0},
     };
     // Every counter, as the match and the process name them (the same list /metrics reads).
+    // The game's scoreboard (an empty array under sandbox rules), as arena-replay --scoreboard prints it.
+    std::vector<rules::score_line> lines;
+    std::vector<std::string> names;
+    for (const match::match::named_score& s : match_.scoreboard()) {
+        lines.push_back(s.line);
+        names.push_back(s.name);
+    }
+    j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
     stats_json_sink figures(j);
     report(match_.counters(), figures);
     report(p, figures);

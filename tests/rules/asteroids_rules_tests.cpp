@@ -1,9 +1,15 @@
 // Asteroids rules (server/rules/asteroids_rules.hpp): each rule in closed form, then a
 // scripted match through apply_tick against a golden scoreboard and state hash.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <cstdio>
 
 #include "server/config/config_json.hpp"
+#include "server/config/scoreboard_json.hpp"
 #include "server/match/tick_record.hpp"
+#include "server/replay/recorder.hpp"
+#include "server/replay/replayer.hpp"
 #include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/trig.hpp"
@@ -309,15 +315,15 @@ struct scripted_result {
     std::vector<rules::score_line> board;
 };
 
-scripted_result scripted_match(uint32_t ticks) {
+scripted_result scripted_match(uint32_t ticks, replay::recorder* rec = nullptr) {
     world::world w(asteroids_game(), 2026);
     const std::unique_ptr<rules::rules> r = rules::make_rules(w);
     REQUIRE(r->has_state());
     std::vector<uint32_t> ships;
     for (uint32_t t = 0; t < ticks; ++t) {
-        match::tick_record rec;
-        rec.tick = w.tick();
-        if (t == 0) rec.joins = {1, 2, 3, 4};
+        match::tick_record record;
+        record.tick = w.tick();
+        if (t == 0) record.joins = {1, 2, 3, 4};
         for (uint32_t p = 1; p <= 4; ++p) {
             const uint32_t body = r->body_of(p);
             if (body == 0) continue;
@@ -325,10 +331,12 @@ scripted_result scripted_match(uint32_t ticks) {
             in.thrust = (t / (40 + 10 * p)) % 2 == 0 ? 0.6f : 0.0f;
             in.turn = (t / (25 + 5 * p)) % 3 == 0 ? 0.5f : ((t / (25 + 5 * p)) % 3 == 1 ? -0.4f : 0.0f);
             in.buttons = (t + p) % 4 == 0 ? rules::button_fire : 0;
-            rec.inputs.push_back({body, in});
+            record.inputs.push_back({body, in});
         }
-        match::apply_tick(w, *r, rec);
+        match::apply_tick(w, *r, record);
+        if (rec) REQUIRE(rec->record_tick(record, rules::state_hash(w, *r)).ok());
     }
+    if (rec) REQUIRE(rec->finish(w.tick(), rules::state_hash(w, *r)).ok());
     return {rules::state_hash(w, *r), r->scoreboard()};
 }
 
@@ -357,4 +365,37 @@ TEST_CASE("a scripted asteroids match ends at a golden scoreboard and hash", "[r
         CHECK(a.board[k].hits == golden[k].hits);
         CHECK(a.board[k].lives == golden[k].lives);
     }
+}
+
+TEST_CASE("a recorded asteroids match replays to the same scoreboard and state hash", "[rules][asteroids][replay]") {
+    const std::string path = "/tmp/arena_rules_replay_" + std::to_string(::getpid()) + ".arpl";
+    scripted_result live;
+    {
+        // The header's start hash is the world's alone, taken before any tick.
+        const world::world start(asteroids_game(), 2026);
+        auto opened = replay::recorder::open(path, replay::make_header(start, "asteroids", 2026, 60));
+        REQUIRE(opened.ok());
+        live = scripted_match(600, &opened.value);
+    }
+    auto rp = replay::replayer::open(path);
+    REQUIRE(rp.ok());
+    const replay::replay_report report = rp.value->run();
+    std::remove(path.c_str());
+    CHECK(report.complete);
+    CHECK_FALSE(report.mismatch);
+    CHECK(report.final_hash == live.hash);
+    const std::vector<rules::score_line> replayed = rp.value->game_rules().scoreboard();
+    CHECK(config::scoreboard_json(replayed) == config::scoreboard_json(live.board));
+    uint32_t shots = 0;
+    for (const rules::score_line& s : replayed) shots += s.shots;
+    CHECK(shots > 0);
+}
+
+TEST_CASE("the scoreboard JSON lists every player in id order with its name", "[rules]") {
+    const rules::score_line lines[] = {{1, 70, 0, 1, 12, 3, 2, false}, {4, 200, 1, 0, 5, 1, 3, false}};
+    const std::string names[] = {"ada", "bob \"b\""};
+    CHECK(config::scoreboard_json(lines, names) ==
+          R"([{"deaths":1,"hits":3,"kills":0,"name":"ada","player":1,"score":70,"shots":12},)"
+          R"({"deaths":0,"hits":1,"kills":1,"name":"bob \"b\"","player":4,"score":200,"shots":5}])");
+    CHECK(config::scoreboard_json({}) == "[]");
 }

@@ -1,0 +1,22 @@
+#include "server/config/scoreboard_json.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace arena::config {
+
+std::string scoreboard_json(std::span<const rules::score_line> lines, std::span<const std::string> names) {
+    nlohmann::json board = nlohmann::json::array();
+    for (size_t k = 0; k < lines.size(); ++k) {
+        const rules::score_line& s = lines[k];
+        board.push_back({{"player", s.player},
+                         {"name", k < names.size() ? names[k] : std::string()},
+                         {"score", s.score},
+                         {"kills", s.kills},
+                         {"deaths", s.deaths},
+                         {"shots", s.shots},
+                         {"hits", s.hits}});
+    }
+    return board.dump();
+}
+
+}  // namespace arena::config
