@@ -47,6 +47,30 @@ result<welcome_info> decode_welcome(const Message& message) {
     w.world_config_hash = t->world_config_hash();
     w.world_version = t->world_version();
     w.view_radius = t->view_radius();
+    // The static geometry: one pose per shape, the same ids, finite poses.
+    std::vector<shape_desc> shapes;
+    const std::string problem = read_shapes(t->static_shapes(), t->static_vertices(), shapes);
+    if (!problem.empty()) return result<welcome_info>::failure("Welcome.static_shapes: " + problem);
+    const auto* poses = t->static_bodies();
+    const std::size_t pose_count = poses == nullptr ? 0 : poses->size();
+    if (pose_count != shapes.size()) {
+        return result<welcome_info>::failure("Welcome: " + std::to_string(pose_count) + " static_bodies but " +
+                                             std::to_string(shapes.size()) + " static_shapes");
+    }
+    w.statics.reserve(shapes.size());
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const BodyState& pose = *poses->Get(static_cast<flatbuffers::uoffset_t>(i));
+        if (pose.id() != shapes[i].id) {
+            return result<welcome_info>::failure("Welcome: static_bodies[" + std::to_string(i) + "] is body " +
+                                                 std::to_string(pose.id()) + ", its shape is body " +
+                                                 std::to_string(shapes[i].id));
+        }
+        if (const char* field = non_finite_field(pose)) {
+            return result<welcome_info>::failure("Welcome: static_bodies[" + std::to_string(i) + "]." + field +
+                                                 " is not finite");
+        }
+        w.statics.push_back({pose.x(), pose.y(), pose.angle(), shapes[i]});
+    }
     return result<welcome_info>::success(std::move(w));
 }
 
@@ -91,7 +115,8 @@ result<bye_msg> decode_bye(const Message& message) {
 result<snapshot_view> decode_snapshot(const Message& message) {
     const auto* t = message.payload_as<Snapshot>();
     if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
-    snapshot_view view{t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false};
+    snapshot_view view{t->tick(),   t->ack_sequence(),  {}, t->baseline_tick(), {}, false,
+                       t->shapes(), t->shape_vertices()};
     if (const auto* delta = t->delta(); delta != nullptr) {
         view.is_delta = true;
         view.delta = {delta->data(), delta->size()};

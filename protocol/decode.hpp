@@ -30,6 +30,10 @@ struct snapshot_view {
     std::uint32_t baseline_tick = 0;      // delta: the view it is encoded against; 0 = none
     std::span<const std::uint8_t> delta;  // the codec's bytes (protocol/delta/codec.hpp)
     bool is_delta = false;                // the Snapshot carries `delta` (empty bodies)
+    // The descriptions of bodies entering the view (README.md, "Shapes"), in the frame;
+    // read_shapes() (shapes.hpp) checks and reads them. Null when absent.
+    const flatbuffers::Vector<const BodyShape*>* shapes = nullptr;
+    const flatbuffers::Vector<const ShapeVertex*>* shape_vertices = nullptr;
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 

@@ -35,9 +35,25 @@ frame_bytes encode_welcome(const welcome_info& w) {
     flatbuffers::FlatBufferBuilder fbb(small_message_bytes + w.preset.size() + w.world_config.size());
     const auto preset = make_string(fbb, w.preset);
     const auto config = make_string(fbb, w.world_config);
+    // The static geometry; absent (not empty vectors) in a world without any, as before.
+    flatbuffers::Offset<flatbuffers::Vector<const BodyState*>> poses;
+    flatbuffers::Offset<flatbuffers::Vector<const BodyShape*>> shapes;
+    flatbuffers::Offset<flatbuffers::Vector<const ShapeVertex*>> vertices;
+    if (!w.statics.empty()) {
+        std::vector<BodyState> states;
+        shape_list list;
+        states.reserve(w.statics.size());
+        for (const static_body& s : w.statics) {
+            states.emplace_back(s.shape.id, 0u, s.x, s.y, 0.0f, 0.0f, s.angle, 0.0f);
+            list.append(s.shape);
+        }
+        poses = fbb.CreateVectorOfStructs(states.data(), states.size());
+        shapes = fbb.CreateVectorOfStructs(list.shapes.data(), list.shapes.size());
+        vertices = fbb.CreateVectorOfStructs(list.vertices.data(), list.vertices.size());
+    }
     finish_message(fbb, Payload::Welcome,
                    CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate, w.snapshot_rate, preset, config,
-                                 w.world_config_hash, w.world_version, w.view_radius)
+                                 w.world_config_hash, w.world_version, w.view_radius, poses, shapes, vertices)
                        .Union());
     return to_frame(fbb);
 }

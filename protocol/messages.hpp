@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "protocol/arena_generated.h"
+#include "protocol/shapes.hpp"
 
 namespace arena::protocol {
 
@@ -32,7 +33,8 @@ struct welcome_info {
     std::string world_config;             // JSON, the --config format
     std::uint64_t world_config_hash = 0;  // world_config_hash(world_config), config_hash.hpp
     std::uint32_t world_version = 0;
-    float view_radius = 0.0f;  // m; 0 = the whole world
+    float view_radius = 0.0f;            // m; 0 = the whole world
+    std::vector<static_body> statics{};  // every static body, by increasing id (README.md, "Shapes")
     bool operator==(const welcome_info&) const = default;
 };
 

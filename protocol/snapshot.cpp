@@ -26,8 +26,20 @@ BodyState finite_copy(const BodyState& b, std::uint64_t& replaced) {
             fix(b.vx()), fix(b.vy()), fix(b.angle()), fix(b.angular_velocity())};
 }
 
+// The two shape vectors, or absent ones when there is nothing to describe (the frame is then
+// byte for byte what it was before shapes existed).
+struct shape_offsets {
+    flatbuffers::Offset<flatbuffers::Vector<const BodyShape*>> shapes;
+    flatbuffers::Offset<flatbuffers::Vector<const ShapeVertex*>> vertices;
+};
+shape_offsets add_shapes(flatbuffers::FlatBufferBuilder& fbb, const shape_list* list) {
+    if (list == nullptr || list->empty()) return {};
+    return {fbb.CreateVectorOfStructs(list->shapes.data(), list->shapes.size()),
+            fbb.CreateVectorOfStructs(list->vertices.data(), list->vertices.size())};
+}
+
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,
-                    std::span<const BodyState> bodies) {
+                    std::span<const BodyState> bodies, const shape_list* shapes) {
     fbb.Clear();  // keeps the allocated block: no allocation once the builder is warm
     // The rare broken world: a finite copy (allocates; never on a healthy server's path).
     std::vector<BodyState> repaired;
@@ -42,7 +54,10 @@ void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std
     }
     // One PushBytes of bodies.size() * 32 bytes, no per-body work.
     const auto body_vector = fbb.CreateVectorOfStructs(bodies.data(), bodies.size());
-    finish_message(fbb, Payload::Snapshot, CreateSnapshot(fbb, tick, ack_sequence, body_vector).Union());
+    const shape_offsets described = add_shapes(fbb, shapes);
+    finish_message(
+        fbb, Payload::Snapshot,
+        CreateSnapshot(fbb, tick, ack_sequence, body_vector, 0, 0, described.shapes, described.vertices).Union());
 }
 
 std::span<const std::uint8_t> finished(const flatbuffers::FlatBufferBuilder& fbb) {
@@ -66,25 +81,29 @@ std::uint64_t non_finite_values_replaced() noexcept {
 }
 
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
-                                              std::uint32_t ack_sequence, std::span<const BodyState> bodies) {
-    build_snapshot(fbb, tick, ack_sequence, bodies);
+                                              std::uint32_t ack_sequence, std::span<const BodyState> bodies,
+                                              const shape_list* shapes) {
+    build_snapshot(fbb, tick, ack_sequence, bodies, shapes);
     return finished(fbb);
 }
 
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
-                                                    std::span<const std::uint8_t> delta) {
+                                                    std::span<const std::uint8_t> delta, const shape_list* shapes) {
     fbb.Clear();
     const auto bytes = fbb.CreateVector(delta.data(), delta.size());
-    finish_message(fbb, Payload::Snapshot, CreateSnapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes).Union());
+    const shape_offsets described = add_shapes(fbb, shapes);
+    finish_message(
+        fbb, Payload::Snapshot,
+        CreateSnapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes, described.shapes, described.vertices).Union());
     return finished(fbb);
 }
 
-void snapshot_encoder::build(std::uint32_t tick, std::span<const BodyState> bodies) {
+void snapshot_encoder::build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes) {
     // FlatBuffers omits a field equal to its default; ack_sequence must be present in the
     // buffer to be patched in place, so force every field to be written.
     fbb_.ForceDefaults(true);
-    build_snapshot(fbb_, tick, 0, bodies);
+    build_snapshot(fbb_, tick, 0, bodies, shapes);
     built_ = true;
 }
 

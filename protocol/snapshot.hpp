@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "protocol/arena_generated.h"
+#include "protocol/shapes.hpp"
 
 namespace arena::protocol {
 
@@ -25,21 +26,25 @@ namespace arena::protocol {
 
 // Clears fbb and encodes one finished Snapshot frame into it. Returns the frame, which lives
 // in fbb and stays valid until fbb is next cleared or destroyed.
+// `shapes` (optional): descriptions of bodies entering the client's view (README.md, "Shapes").
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
-                                              std::uint32_t ack_sequence, std::span<const BodyState> bodies);
+                                              std::uint32_t ack_sequence, std::span<const BodyState> bodies,
+                                              const shape_list* shapes = nullptr);
 
 // Clears fbb and encodes one client's delta Snapshot frame (empty bodies; `delta` holds the
 // codec's bytes, protocol/delta/codec.hpp). baseline_tick 0: encoded without a baseline.
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
-                                                    std::span<const std::uint8_t> delta);
+                                                    std::span<const std::uint8_t> delta,
+                                                    const shape_list* shapes = nullptr);
 
 // Encodes a tick's snapshot once; each client's copy differs only in ack_sequence, which is
 // patched into the copy in place. Cost per client: one memcpy of the frame.
 class snapshot_encoder {
 public:
     // bodies: every body, in increasing id order. Replaces the previous tick's frame.
-    void build(std::uint32_t tick, std::span<const BodyState> bodies);
+    // shapes: descriptions every client of this frame needs (the bodies new since the last).
+    void build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes = nullptr);
 
     // The built frame with ack_sequence 0. Valid until the next build().
     [[nodiscard]] std::span<const std::uint8_t> frame() const noexcept;

@@ -12,9 +12,11 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "protocol/decode.hpp"
 #include "protocol/framing.hpp"
+#include "protocol/shapes.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
 #include "server/world/presets.hpp"
@@ -99,7 +101,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 const protocol::Message& m = *message.value;
                 // Admission and the match, as a transport drives them.
                 if (!game.receive(c, m, now_ns)) c.closed = true;
-                (void)protocol::decode_snapshot(m);
+                if (const auto snapshot = protocol::decode_snapshot(m)) {
+                    std::vector<protocol::shape_desc> shapes;
+                    (void)protocol::read_shapes(snapshot.value.shapes, snapshot.value.shape_vertices, shapes);
+                }
                 (void)protocol::decode_welcome(m);
             } else {
                 game.reject(c, match::admission::unverified(message.error));
