@@ -5,8 +5,10 @@
 #include <stdexcept>
 
 #include "protocol/config_hash.hpp"
+#include "protocol/version.hpp"
 #include "server/config/config_json.hpp"
 #include "server/match/logger.hpp"
+#include "server/match/shape_wire.hpp"
 
 namespace arena::match {
 
@@ -46,6 +48,14 @@ match::match(const match_config& config, const world::world_config& world_config
     if (config.tick_rate == 0 || config.snapshot_rate == 0 || config.tick_rate % config.snapshot_rate != 0)
         throw std::invalid_argument("snapshot rate " + std::to_string(config.snapshot_rate) +
                                     " does not divide the tick rate " + std::to_string(config.tick_rate));
+    // Every Welcome carries the static geometry: a world whose Welcome a client would refuse
+    // as too large does not start (config limits keep configs far below it; a world built
+    // otherwise might not be).
+    const size_t welcome_bytes = protocol::encode_welcome(welcome_for(1, 1)).size() - protocol::frame_prefix_size;
+    if (welcome_bytes > protocol::max_server_frame_body)
+        throw std::invalid_argument("the world's configuration and static geometry make a Welcome of " +
+                                    std::to_string(welcome_bytes) + " bytes, above the " +
+                                    std::to_string(protocol::max_server_frame_body) + " a client accepts");
 }
 
 uint32_t match::snapshot_interval() const {
@@ -358,10 +368,10 @@ void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector
     }
 }
 
-void match::send_welcome(uint32_t player_id, const player& p) {
+protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) const {
     protocol::welcome_info welcome;
     welcome.player_id = player_id;
-    welcome.entity_id = p.body_id;
+    welcome.entity_id = body_id;
     welcome.tick = world_.tick();
     welcome.tick_rate = config_.tick_rate;
     welcome.snapshot_rate = config_.snapshot_rate;
@@ -370,7 +380,15 @@ void match::send_welcome(uint32_t player_id, const player& p) {
     welcome.world_config_hash = world_config_hash_;
     welcome.world_version = world::world_version;
     welcome.view_radius = config_.view_radius;
-    p.who->send(protocol::encode_welcome(welcome));
+    welcome.statics = static_geometry(world_, kinds_);
+    return welcome;
+}
+
+void match::send_welcome(uint32_t player_id, player& p) {
+    const auto bodies = world_.bodies();
+    // Ids grow: a static body added later has an id past this, and snapshots describe it.
+    p.snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
+    p.who->send(protocol::encode_welcome(welcome_for(player_id, p.body_id)));
 }
 
 void match::send_snapshots() {
@@ -380,7 +398,8 @@ void match::send_snapshots() {
     // each tick at 60 Hz ticks and 20 Hz snapshots, not all of them on one tick.
     const uint32_t interval = snapshot_interval();
     const uint32_t phase = world_.tick() % interval;
-    fanout_.begin(world_);
+    kinds_.forget_missing(world_.bodies());
+    fanout_.begin(world_, &kinds_);
     // By id rather than by iterator: a send may end a connection, and with it a player.
     for (auto it = players_.begin(); it != players_.end();) {
         const uint32_t id = it->first;
@@ -394,13 +413,14 @@ void match::send_snapshot(player& p) {
     const uint32_t ack = p.inputs.last_consumed_sequence();
     ++counters_.snapshots_sent;
     if (!p.snapshots.delta && fanout_.shared_full_frame()) {
-        const protocol::snapshot_encoder& shared = fanout_.shared_frame();
-        counters_.snapshot_bytes = shared.frame().size();
-        p.who->send_snapshot(shared, ack);  // one memcpy, the ack patched in
-        return;
+        if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(p.snapshots)) {
+            counters_.snapshot_bytes = shared->frame().size();
+            p.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
+            return;
+        }
     }
-    const auto frame =
-        p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack) : fanout_.full_frame(p.body_id, ack);
+    const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack)
+                                         : fanout_.full_frame(p.snapshots, p.body_id, ack);
     counters_.snapshot_bytes = frame.size();
     p.who->send_snapshot_frame(frame);
 }

@@ -118,6 +118,12 @@ public:
         rules::score_line line;
     };
     std::vector<named_score> scoreboard() const;
+    // What a body is for drawing (protocol BodyShape.kind: ship, rock...); 0, a plain body,
+    // unless a game's rules tag it. Set it before the body's first snapshot (body_kinds.hpp).
+    void set_body_kind(uint32_t body_id, uint8_t kind) { kinds_.set(body_id, kind); }
+    uint8_t body_kind(uint32_t body_id) const { return kinds_.of(body_id); }
+    // The Welcome a player with this id and body would get now (statics included).
+    protocol::welcome_info welcome_for(uint32_t player_id, uint32_t body_id) const;
     const match_config& config() const { return config_; }
     const admission& rules() const { return admission_; }
     const std::string& world_config_json() const { return world_config_json_; }
@@ -161,7 +167,7 @@ private:
     void forget(client_map::iterator it, const close_cause& cause);
     void leave(player_map::iterator it, const close_cause& cause);
     void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
-    void send_welcome(uint32_t player_id, const player& p);
+    void send_welcome(uint32_t player_id, player& p);
     void remove_player(player_map::iterator it, std::string_view reason);
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
@@ -188,6 +194,7 @@ private:
     uint32_t next_player_id_ = 1;
     bool draining_ = false;
     snapshot_fanout fanout_;
+    body_kinds kinds_;
     match_counters counters_;  // departed players' buffers folded in on leave
 };
 

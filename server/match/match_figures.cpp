@@ -48,6 +48,8 @@ void report(const match_counters& c, figure_sink& out) {
     out.counter({"snapshots/delta_bytes", "", ""}, s.delta_bytes);
     out.counter({"snapshots/delta_payload_bytes", "", ""}, s.delta_payload_bytes);
     out.counter({"snapshots/delta_bodies", "", ""}, s.delta_bodies);
+    out.counter({"snapshots/shapes_sent", "", ""}, s.shapes_sent);
+    out.counter({"snapshots/shape_bytes", "", ""}, s.shape_bytes);
     out.gauge({"snapshots/delta_bytes_per_body", "", ""},
               s.delta_bodies == 0 ? 0.0 : static_cast<double>(s.delta_bytes) / static_cast<double>(s.delta_bodies));
 }

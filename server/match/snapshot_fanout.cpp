@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "server/match/body_state.hpp"
+#include "server/match/shape_wire.hpp"
 
 namespace arena::match {
 
@@ -14,8 +15,9 @@ snapshot_fanout::snapshot_fanout(const fanout_config& config)
     // back as a client's oldest kept snapshot.
     : config_(config), history_(tick_ring{config.ring.depth * config.ring.interval, 1}) {}
 
-void snapshot_fanout::begin(const world::world& w) {
+void snapshot_fanout::begin(const world::world& w, const body_kinds* kinds) {
     world_ = &w;
+    kinds_ = kinds != nullptr ? kinds : &no_kinds_;
     tick_ = w.tick();
     now_ = nullptr;
     states_ready_ = index_ready_ = shared_ready_ = false;
@@ -35,13 +37,43 @@ const std::vector<protocol::BodyState>& snapshot_fanout::states() {
     return states_;
 }
 
-const protocol::snapshot_encoder& snapshot_fanout::shared_frame() {
+void snapshot_fanout::build_shared() {
     if (!shared_ready_) {
-        shared_.build(tick_, states());
+        // Ids are never reused and grow: the bodies new since the last shared frame are those
+        // from its next id on.
+        shared_shapes_.clear();
+        const auto bodies = world_->bodies();
+        for (const world::body& b : bodies) {
+            if (b.id >= shared_next_id_) shared_shapes_.append(describe(*world_, b, kinds_->of(b.id)));
+        }
+        shared_.build(tick_, states(), &shared_shapes_);
+        shared_base_tick_ = last_shared_tick_;
+        last_shared_tick_ = tick_;
+        if (!bodies.empty()) shared_next_id_ = std::max(shared_next_id_, bodies.back().id + 1);
         shared_ready_ = true;
     }
+}
+
+const protocol::snapshot_encoder* snapshot_fanout::shared_frame(snapshot_client& client) {
+    build_shared();
+    if (client.shared_tick == 0 || client.shared_tick != shared_base_tick_) return nullptr;
+    client.shared_tick = tick_;
     ++counters_.full_frames;
-    return shared_;
+    count_shapes(shared_shapes_);
+    return &shared_;
+}
+
+void snapshot_fanout::describe_view(snapshot_client& client, uint32_t acked, bool reliable) {
+    shapes_.clear();
+    const auto bodies = world_->bodies();
+    client.shapes.update(tick_, bodies, view_, acked, reliable,
+                         [&](uint32_t i) { shapes_.append(describe(*world_, bodies[i], kinds_->of(bodies[i].id))); });
+    count_shapes(shapes_);
+}
+
+void snapshot_fanout::count_shapes(const protocol::shape_list& list) {
+    counters_.shapes_sent += list.shapes.size();
+    counters_.shape_bytes += list.wire_bytes();
 }
 
 void snapshot_fanout::find_view(uint32_t body_id) {
@@ -95,9 +127,13 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, u
     }
     encoder_for(baseline_tick)
         .encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(), delta_bytes_);
+    // Shapes are confirmed by any acknowledged snapshot this client was sent, a baseline or not.
+    const uint32_t sent_ack = acked != 0 && acked < tick_ && client.views.at(acked) != nullptr ? acked : 0;
+    describe_view(client, sent_ack, false);
     client.views.record(tick_, view_);
 
-    const auto frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_);
+    const auto frame =
+        protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_);
     ++(baseline_tick != 0 ? counters_.delta_frames : counters_.keyframes);
     counters_.delta_bytes += frame.size();
     counters_.delta_payload_bytes += delta_bytes_.size();
@@ -105,13 +141,21 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, u
     return frame;
 }
 
-std::span<const uint8_t> snapshot_fanout::full_frame(uint32_t body_id, uint32_t ack_sequence) {
+std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence) {
     find_view(body_id);
     full_states_.clear();
     const auto& all = states();
     for (uint32_t i : view_) full_states_.push_back(all[i]);
     ++counters_.full_frames;
-    return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_);
+    // A stream delivers every frame: what this one describes, the client holds.
+    describe_view(client, 0, true);
+    if (shared_full_frame()) {
+        // This tick's shared frame marks what the next one describes as new; this client now
+        // holds everything up to it.
+        build_shared();
+        client.shared_tick = tick_;
+    }
+    return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_, &shapes_);
 }
 
 }  // namespace arena::match

@@ -6,6 +6,10 @@
 //   world, else one per client holding its view.
 // A client's view is its own body and every body within view_radius of it, found through a
 // grid index built once per tick that sends snapshots (server/world/view_index.hpp).
+// Every frame also describes the shapes of the view's bodies that its client may not hold
+// yet (shape_tracker.hpp; protocol/README.md "Shapes"). The shared frame describes the
+// bodies spawned since the previous shared frame, so it serves exactly the clients that got
+// that one; any other BodyState client gets a frame of its own.
 //
 // Delta clients are spread over the ticks between two snapshots (match.cpp), so the fan-out
 // runs every tick for a share of them: each piece of per-tick work (quantising, indexing, the
@@ -17,6 +21,8 @@
 #include "protocol/delta/codec.hpp"
 #include "protocol/delta/shared_encoder.hpp"
 #include "protocol/snapshot.hpp"
+#include "server/match/body_kinds.hpp"
+#include "server/match/shape_tracker.hpp"
 #include "server/match/view_history.hpp"
 #include "server/world/view_index.hpp"
 #include "server/world/world.hpp"
@@ -32,9 +38,11 @@ struct fanout_config {
 // What the fan-out keeps per client.
 struct snapshot_client {
     explicit snapshot_client(tick_ring ring, bool delta) : delta(delta), views(ring) {}
-    bool delta = false;       // the client decodes delta snapshots
-    uint32_t acked_tick = 0;  // its newest Input.snapshot_ack; 0: none
-    client_views views;       // what its recent snapshots held
+    bool delta = false;        // the client decodes delta snapshots
+    uint32_t acked_tick = 0;   // its newest Input.snapshot_ack; 0: none
+    client_views views;        // what its recent snapshots held
+    shape_tracker shapes;      // which shapes it holds
+    uint32_t shared_tick = 0;  // BodyState clients of a whole-world view: the tick of its last frame
 };
 
 struct fanout_counters {
@@ -44,24 +52,28 @@ struct fanout_counters {
     uint64_t delta_payload_bytes = 0;  // the codec's bytes inside them (no FlatBuffers framing)
     uint64_t delta_bodies = 0;         // bodies in the views those frames carried
     uint64_t full_frames = 0;          // BodyState frames sent (clients without delta_snapshots)
+    uint64_t shapes_sent = 0;          // body shapes described, summed over the clients that got them
+    uint64_t shape_bytes = 0;          // their BodyShape and ShapeVertex bytes, summed the same way
 };
 
 class snapshot_fanout {
 public:
     explicit snapshot_fanout(const fanout_config& config);
 
-    // A new tick of this world: what the previous tick prepared is stale.
-    void begin(const world::world& w);
+    // A new tick of this world: what the previous tick prepared is stale. `kinds` tags the
+    // bodies' shapes (null: every body is kind 0); it must outlive the tick.
+    void begin(const world::world& w, const body_kinds* kinds = nullptr);
 
     // The frame for a delta client whose body is `body_id`. Valid until the next call.
     std::span<const uint8_t> delta_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence);
 
     // True: BodyState clients share shared_frame(); false: each gets full_frame().
     [[nodiscard]] bool shared_full_frame() const { return config_.view_radius <= 0; }
-    // The shared frame; counts one client served.
-    [[nodiscard]] const protocol::snapshot_encoder& shared_frame();
+    // The shared frame, and counts one client served; null when this client did not get the
+    // previous one (it then needs full_frame() to learn the shapes it lacks).
+    [[nodiscard]] const protocol::snapshot_encoder* shared_frame(snapshot_client& client);
     // The BodyState frame of one client's view. Valid until the next call.
-    std::span<const uint8_t> full_frame(uint32_t body_id, uint32_t ack_sequence);
+    std::span<const uint8_t> full_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence);
 
     [[nodiscard]] const fanout_counters& counters() const { return counters_; }
     [[nodiscard]] const fanout_config& config() const { return config_; }
@@ -75,6 +87,10 @@ private:
     // This tick's shared encoder against the state of `baseline_tick` (0: none), prepared on
     // first use: clients that acknowledged the same tick share its per-body work.
     protocol::delta::shared_encoder& encoder_for(uint32_t baseline_tick);
+    // Into shapes_: the shapes of view_'s bodies that `client` lacks (acked: a tick sent to it).
+    void describe_view(snapshot_client& client, uint32_t acked, bool reliable);
+    void count_shapes(const protocol::shape_list& list);
+    void build_shared();  // this tick's shared frame, once
 
     fanout_config config_;
     const world::world* world_ = nullptr;
@@ -94,6 +110,13 @@ private:
     std::vector<prepared_encoder> encoders_;  // a handful: one per baseline in use
     std::vector<uint8_t> delta_bytes_;
     std::vector<protocol::BodyState> full_states_;
+    const body_kinds* kinds_ = nullptr;
+    body_kinds no_kinds_;
+    protocol::shape_list shapes_;         // this frame's descriptions
+    protocol::shape_list shared_shapes_;  // the shared frame's
+    uint32_t last_shared_tick_ = 0;       // the tick of the newest shared frame
+    uint32_t shared_base_tick_ = 0;       // the shared frame's predecessor: its clients can use it
+    uint32_t shared_next_id_ = 0;         // bodies from this id on are new since the last shared frame
     flatbuffers::FlatBufferBuilder fbb_{1024};
     fanout_counters counters_;
 };

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -23,6 +24,7 @@
 #include "protocol/delta/receiver.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
+#include "server/match/shape_wire.hpp"
 #include "server/world/broadphase.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
@@ -247,8 +249,9 @@ struct sim_client {
     uint32_t silent_until = 0;  // no Input at all before this tick
     uint32_t frozen_until = 0;  // before this tick Inputs carry frozen_ack (acks withheld)
     uint32_t frozen_ack = 0;
-    uint32_t ack_lag = 0;       // ticks an ack takes to arrive (late acks)
-    std::deque<uint32_t> acks;  // rx.ack() after each of the last ticks, newest last
+    uint32_t ack_lag = 0;                             // ticks an ack takes to arrive (late acks)
+    std::deque<uint32_t> acks;                        // rx.ack() after each of the last ticks, newest last
+    std::map<uint32_t, protocol::shape_desc> shapes;  // what it holds: the newest view's bodies'
 };
 
 // A player's place in the session: connected, waiting to reconnect, or empty.
@@ -268,7 +271,35 @@ struct session_stats {
     uint64_t full_frames = 0;
     uint64_t lost = 0;
     uint64_t decoded = 0;
+    uint64_t shapes = 0;          // shapes described by the snapshots that arrived
+    uint64_t shapes_checked = 0;  // bodies of decoded views whose shape the client held
 };
+
+// A client keeps the shapes each snapshot that arrives describes (protocol/README.md,
+// "Shapes")...
+void take_shapes(sim_client& c, const protocol::snapshot_view& s, session_stats& stats) {
+    std::vector<protocol::shape_desc> got;
+    const std::string problem = protocol::read_shapes(s.shapes, s.shape_vertices, got);
+    INFO(problem);
+    REQUIRE(problem.empty());
+    for (const protocol::shape_desc& d : got) c.shapes[d.id] = d;
+    stats.shapes += got.size();
+}
+
+// ... and, once it decoded a view, holds the shape of every body in it (the world's own,
+// with the kind the match gave it); it forgets the shapes of bodies that left the view.
+void check_shapes(sim_client& c, std::span<const uint32_t> ids, const match::match& g, session_stats& stats) {
+    std::erase_if(c.shapes, [&](const auto& kv) { return !std::ranges::binary_search(ids, kv.first); });
+    for (const uint32_t id : ids) {
+        INFO("body " << id);
+        const auto held = c.shapes.find(id);
+        REQUIRE(held != c.shapes.end());
+        const world::body* b = g.state().find(id);
+        REQUIRE(b != nullptr);
+        REQUIRE(held->second == match::describe(g.state(), *b, g.body_kind(id)));
+        ++stats.shapes_checked;
+    }
+}
 
 // The baseline the server must pick (snapshot_fanout.hpp): the client's newest ack, when the
 // server still keeps that snapshot and sent it on this connection; else none.
@@ -326,7 +357,9 @@ void check_delta(sim_client& c, const protocol::snapshot_view& s, const match::m
         return;
     }
     if (s.baseline_tick != 0 && s.baseline_tick < c.rx.ack()) ++stats.older_baselines;
-    decode_and_check(c.rx, s, g.state(), c.body, g.config().view_radius);
+    take_shapes(c, s, stats);
+    const std::vector<uint32_t> ids = decode_and_check(c.rx, s, g.state(), c.body, g.config().view_radius);
+    check_shapes(c, ids, g, stats);
     ++stats.decoded;
 }
 
@@ -355,6 +388,8 @@ void observe(sim_client& c, const match::match& g, world::rng& rng, session_stat
             check_delta(c, s, g, rng, stats);
         } else {
             check_full_view(s, g.state(), c.body, g.config().view_radius);
+            take_shapes(c, s, stats);
+            check_shapes(c, ids_of(s.bodies), g, stats);
             ++stats.full_frames;
         }
     }
@@ -389,6 +424,8 @@ void send_input(sim_client& c, match::match& g, world::rng& rng) {
 
 TEST_CASE("every snapshot of a long lossy session decodes to exactly the client's view", "[match][delta]") {
     match::match g(delta_config(80), world::asteroids_preset());
+    // The game tags the rocks (kinds travel with the shapes); the ships stay plain bodies.
+    for (const world::body& b : g.state().bodies()) g.set_body_kind(b.id, static_cast<uint8_t>(1 + b.id % 3));
     world::rng rng(20261122);
     std::vector<slot> slots(11);
     slots[0].delta = false;  // one client keeps BodyState snapshots
@@ -413,8 +450,13 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
 
     INFO("delta " << stats.delta_frames << ", keyframes " << stats.keyframes << " (" << stats.keyframes_despite_ack
                   << " despite an ack), older baselines " << stats.older_baselines << ", lost " << stats.lost
-                  << ", decoded " << stats.decoded << ", BodyState " << stats.full_frames);
+                  << ", decoded " << stats.decoded << ", BodyState " << stats.full_frames << ", shapes " << stats.shapes
+                  << ", bodies checked " << stats.shapes_checked);
     const match::match_counters counters = g.counters();
+    // Shapes: described far less often than the bodies they serve, and always held in time.
+    CHECK(stats.shapes > 0);
+    CHECK(stats.shapes_checked > 10 * stats.shapes);
+    CHECK(counters.snapshots.shapes_sent >= stats.shapes);
     CHECK(counters.snapshots.delta_frames == stats.delta_frames);
     CHECK(counters.snapshots.keyframes == stats.keyframes);
     CHECK(counters.snapshots.full_frames == stats.full_frames);

@@ -1,0 +1,82 @@
+#pragma once
+// Which body shapes one client holds, so that each snapshot describes exactly the bodies of
+// its view the client may lack (protocol/README.md, "Shapes"). The rule, for links that lose
+// and reorder frames as well as for streams:
+// - a body is *known* once the client acknowledged (Input.snapshot_ack) a snapshot sent since
+//   the body last entered its view: that snapshot described it, and the client keeps a shape
+//   while the body stays in its newest view;
+// - every snapshot describes each body of its view that is not known yet, so whichever
+//   snapshot the client decodes, it holds the shape of every body in it;
+// - a body that leaves the view is forgotten on both sides; when it comes back it is
+//   described again.
+// On a reliable stream without acknowledgements (clients of full BodyState snapshots) a
+// description sent is held: `reliable` makes a body known at once. Static bodies whose ids
+// the Welcome covered are never described: the Welcome carried them all.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "server/world/body.hpp"
+
+namespace arena::match {
+
+class shape_tracker {
+public:
+    // The Welcome carried every static body with an id below `below`.
+    void welcomed(uint32_t below) {
+        statics_below_ = below;
+        known_.clear();
+        pending_.clear();
+    }
+
+    // One snapshot at `tick` holding bodies[i] for each i of `view` (increasing indices of a
+    // span sorted by id). `acked`: the newest snapshot tick the client acknowledged, which
+    // must be one sent to it (0: none). Calls describe(i) for each body to describe, in order.
+    template <class Describe>
+    void update(uint32_t tick, std::span<const world::body> bodies, std::span<const uint32_t> view, uint32_t acked,
+                bool reliable, Describe&& describe) {
+        next_known_.clear();
+        next_pending_.clear();
+        size_t k = 0, p = 0;
+        for (const uint32_t i : view) {
+            const world::body& b = bodies[i];
+            if (b.is_static() && b.id < statics_below_) continue;
+            while (k < known_.size() && known_[k] < b.id) ++k;
+            if (k < known_.size() && known_[k] == b.id) {
+                next_known_.push_back(b.id);
+                continue;
+            }
+            while (p < pending_.size() && pending_[p].id < b.id) ++p;
+            const bool was_pending = p < pending_.size() && pending_[p].id == b.id;
+            const uint32_t entered = was_pending ? pending_[p].entered : tick;
+            if (was_pending && acked != 0 && entered <= acked) {
+                next_known_.push_back(b.id);  // a snapshot that described it arrived
+                continue;
+            }
+            describe(i);
+            if (reliable) {
+                next_known_.push_back(b.id);
+            } else {
+                next_pending_.push_back({b.id, entered});
+            }
+        }
+        known_.swap(next_known_);
+        pending_.swap(next_pending_);
+    }
+
+    [[nodiscard]] size_t known() const { return known_.size(); }
+    [[nodiscard]] size_t pending() const { return pending_.size(); }
+
+private:
+    struct waiting {
+        uint32_t id = 0;
+        uint32_t entered = 0;  // the first snapshot tick of its current stay in the view
+    };
+    uint32_t statics_below_ = 0;
+    std::vector<uint32_t> known_;   // increasing ids
+    std::vector<waiting> pending_;  // increasing ids
+    std::vector<uint32_t> next_known_;
+    std::vector<waiting> next_pending_;
+};
+
+}  // namespace arena::match
