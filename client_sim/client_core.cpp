@@ -116,6 +116,8 @@ void client_core::on_welcome(const protocol::Message& message) {
 
     player_id_ = w.player_id;
     entity_id_ = w.entity_id;
+    statics_ = w.statics;
+    shapes_.clear();
     tick_rate_ = w.tick_rate;
     predictor_.emplace(*config, entity_id_, player_id_);
     if (params_.delta_snapshots) deltas_.emplace(tick_rate_);
@@ -146,6 +148,8 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     m.snapshot_bytes_each.add(static_cast<double>(message_bytes_));
     m.snapshot_bytes += message_bytes_;
 
+    // Before the view: a delta that does not decode still brings its shapes.
+    if (!take_shapes(snapshot)) return;
     std::span<const protocol::BodyState> bodies = snapshot.bodies;
     if (snapshot.is_delta) {
         if (!deltas_) return end(end_kind::protocol_error, "Snapshot: a delta, but this bot asked for full snapshots");
@@ -165,6 +169,7 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     }
     m.bodies_in_view.add(static_cast<double>(bodies.size()));
     m.view_bodies += bodies.size();
+    check_shapes(bodies);
 
     // Bodies come in increasing id order: a binary search, not a scan of every body.
     const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
@@ -186,6 +191,56 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
         m.input_lag_ticks.add(static_cast<double>(predictor_->last_sequence() - snapshot.ack_sequence));
     }
     behavior_->observe(bodies, entity_id_);
+}
+
+bool client_core::take_shapes(const protocol::snapshot_view& snapshot) {
+    if (snapshot.shapes == nullptr) return true;
+    arrived_.clear();
+    const std::string problem = protocol::read_shapes(snapshot.shapes, snapshot.shape_vertices, arrived_);
+    if (!problem.empty()) {
+        end(end_kind::protocol_error, "Snapshot: " + problem);
+        return false;
+    }
+    fleet_metrics& m = shared_.metrics();
+    m.shapes_received += arrived_.size();
+    m.shape_bytes += arrived_.size() * sizeof(protocol::BodyShape);
+    const auto by_id = [](const protocol::shape_desc& a, const protocol::shape_desc& b) {
+        return a.id < b.id;
+    };
+    for (const protocol::shape_desc& d : arrived_) {
+        m.shape_bytes += d.vertex_count * sizeof(protocol::ShapeVertex);
+        const auto at = std::lower_bound(shapes_.begin(), shapes_.end(), d, by_id);
+        if (at != shapes_.end() && at->id == d.id) {
+            *at = d;  // described again: it came back into view, or an ack is on its way
+        } else {
+            shapes_.insert(at, d);
+        }
+    }
+    return true;
+}
+
+void client_core::check_shapes(std::span<const protocol::BodyState> bodies) {
+    // Both lists go by id: one merge keeps the shapes of the view's bodies.
+    std::size_t keep = 0, b = 0;
+    for (std::size_t s = 0; s < shapes_.size(); ++s) {
+        while (b < bodies.size() && bodies[b].id() < shapes_[s].id) ++b;
+        if (b < bodies.size() && bodies[b].id() == shapes_[s].id) shapes_[keep++] = shapes_[s];
+    }
+    shapes_.resize(keep);
+    if (outcome_.misbehaving) return;
+    for (const protocol::BodyState& body : bodies) {
+        if (shape_of(body.id()) == nullptr) ++shared_.metrics().bodies_without_shape;
+    }
+}
+
+const protocol::shape_desc* client_core::shape_of(std::uint32_t id) const {
+    const auto dynamic = std::lower_bound(shapes_.begin(), shapes_.end(), id,
+                                          [](const protocol::shape_desc& d, std::uint32_t v) { return d.id < v; });
+    if (dynamic != shapes_.end() && dynamic->id == id) return &*dynamic;
+    const auto fixed = std::lower_bound(statics_.begin(), statics_.end(), id,
+                                        [](const protocol::static_body& s, std::uint32_t v) { return s.shape.id < v; });
+    if (fixed != statics_.end() && fixed->shape.id == id) return &fixed->shape;
+    return nullptr;
 }
 
 void client_core::on_pong(const protocol::Message& message, time_ns now) {

@@ -100,6 +100,10 @@ public:
     // Null before the Welcome.
     [[nodiscard]] const predictor* prediction() const { return predictor_ ? &*predictor_ : nullptr; }
     [[nodiscard]] const protocol::delta::receiver* deltas() const { return deltas_ ? &*deltas_ : nullptr; }
+    // The shape of body `id` (a static one from the Welcome, any other from the snapshots),
+    // or null when this client does not hold it. Held while the body is in the newest view.
+    [[nodiscard]] const protocol::shape_desc* shape_of(std::uint32_t id) const;
+    [[nodiscard]] const std::vector<protocol::static_body>& statics() const { return statics_; }
     // The last snapshot's ack_sequence (the newest input the server consumed), 0 before one.
     [[nodiscard]] std::uint32_t last_ack() const { return last_ack_; }
     // Figures that need the whole run (this core's snapshot rate) into the metrics.
@@ -112,6 +116,10 @@ private:
     void on_pong(const protocol::Message& message, time_ns now);
     void on_reject(const protocol::Message& message);
     void on_bye(const protocol::Message& message);
+    // Keeps the shapes a snapshot describes; false (the session ended) when they are malformed.
+    bool take_shapes(const protocol::snapshot_view& snapshot);
+    // The newest view is `bodies`: drops the shapes of bodies not in it, counts those without one.
+    void check_shapes(std::span<const protocol::BodyState> bodies);
 
     void send_input(const world::player_input& input);
     // Does this core's fault once it is due; true when it replaces this tick's input.
@@ -138,6 +146,9 @@ private:
     std::optional<behavior> behavior_;
     std::optional<protocol::delta::receiver> deltas_;  // when the core asked for delta snapshots
     std::vector<protocol::BodyState> decoded_;         // the last delta's view as BodyState
+    std::vector<protocol::static_body> statics_;       // the Welcome's, by increasing id
+    std::vector<protocol::shape_desc> shapes_;         // the other bodies' of the newest view, by id
+    std::vector<protocol::shape_desc> arrived_;        // a snapshot's descriptions, being merged
     std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
     std::uint32_t last_ack_ = 0;
     std::uint32_t last_snapshot_tick_ = 0;

@@ -37,15 +37,18 @@ struct fleet_metrics {
     std::uint64_t bytes_out = 0;
     std::uint64_t snapshots = 0;
     std::uint64_t inputs_sent = 0;
-    std::uint64_t ticks_skipped = 0;        // shared ticker ticks dropped because the process lagged
-    std::uint64_t predictions_exact = 0;    // prediction errors exactly 0 (well-behaved bots)
-    std::uint64_t snapshot_bytes = 0;       // frames of every snapshot received, bytes
-    std::uint64_t view_bodies = 0;          // bodies those snapshots held
-    std::uint64_t delta_snapshots = 0;      // snapshots that came as deltas (against a baseline or not)
-    std::uint64_t delta_errors = 0;         // deltas that did not decode (a server bug; the bot recovers)
-    std::uint64_t delta_payload_bytes = 0;  // the codec's bytes inside those deltas (no framing)
-    std::uint64_t delta_bodies = 0;         // bodies the decoded deltas held
-    std::uint64_t stale_messages = 0;       // on datagrams: snapshots duplicated or overtaken, dropped
+    std::uint64_t ticks_skipped = 0;         // shared ticker ticks dropped because the process lagged
+    std::uint64_t predictions_exact = 0;     // prediction errors exactly 0 (well-behaved bots)
+    std::uint64_t snapshot_bytes = 0;        // frames of every snapshot received, bytes
+    std::uint64_t view_bodies = 0;           // bodies those snapshots held
+    std::uint64_t delta_snapshots = 0;       // snapshots that came as deltas (against a baseline or not)
+    std::uint64_t delta_errors = 0;          // deltas that did not decode (a server bug; the bot recovers)
+    std::uint64_t delta_payload_bytes = 0;   // the codec's bytes inside those deltas (no framing)
+    std::uint64_t delta_bodies = 0;          // bodies the decoded deltas held
+    std::uint64_t stale_messages = 0;        // on datagrams: snapshots duplicated or overtaken, dropped
+    std::uint64_t shapes_received = 0;       // body shapes described by snapshots (statics of Welcomes apart)
+    std::uint64_t shape_bytes = 0;           // their BodyShape and ShapeVertex bytes
+    std::uint64_t bodies_without_shape = 0;  // bodies in a decoded view whose shape the bot did not hold
 
     // The current second, for the progress line; rolled over by the fleet's reporter.
     std::uint64_t interval_bytes_in = 0;

@@ -57,6 +57,9 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     r.view_bodies = m.view_bodies;
     r.delta_snapshots = m.delta_snapshots;
     r.delta_errors = m.delta_errors;
+    r.shapes_received = m.shapes_received;
+    r.shape_bytes = m.shape_bytes;
+    r.bodies_without_shape = m.bodies_without_shape;
     r.delta_problems = m.delta_problems;
     if (m.delta_bodies != 0)
         r.delta_payload_bytes_per_body =
@@ -122,6 +125,9 @@ std::string summary_table(const final_report& r) {
         "%.2f (delta payload)\n",
         static_cast<unsigned long long>(r.delta_snapshots), static_cast<unsigned long long>(r.delta_errors),
         r.bytes_per_body, r.delta_payload_bytes_per_body);
+    out += format("shapes: %llu received (%llu bytes), %llu bodies seen without one\n",
+                  static_cast<unsigned long long>(r.shapes_received), static_cast<unsigned long long>(r.shape_bytes),
+                  static_cast<unsigned long long>(r.bodies_without_shape));
     append_tally(out, "rejects", r.rejects);
     append_tally(out, "delta problems", r.delta_problems);
     append_tally(out, "disconnects", r.disconnects);
@@ -154,7 +160,10 @@ nlohmann::json to_json(const final_report& r) {
           {"snapshot_bytes", r.snapshot_bytes},
           {"view_bodies", r.view_bodies},
           {"delta_snapshots", r.delta_snapshots},
-          {"delta_errors", r.delta_errors}}},
+          {"delta_errors", r.delta_errors},
+          {"shapes_received", r.shapes_received},
+          {"shape_bytes", r.shape_bytes},
+          {"bodies_without_shape", r.bodies_without_shape}}},
         {"bytes_per_body", r.bytes_per_body},
         {"delta_payload_bytes_per_body", r.delta_payload_bytes_per_body},
         {"delta_problems", tally_json(r.delta_problems)},

@@ -35,6 +35,9 @@ struct final_report {
     std::uint64_t view_bodies = 0;      // bodies in those snapshots
     std::uint64_t delta_snapshots = 0;
     std::uint64_t delta_errors = 0;
+    std::uint64_t shapes_received = 0;        // body shapes the snapshots described
+    std::uint64_t shape_bytes = 0;            // their bytes (BodyShape and ShapeVertex)
+    std::uint64_t bodies_without_shape = 0;   // bodies seen before their shape (a server bug)
     double bytes_per_body = 0;                // snapshot_bytes / view_bodies
     double delta_payload_bytes_per_body = 0;  // the codec's bytes alone, per body, over the deltas
     tally delta_problems;

@@ -97,6 +97,10 @@ void check_run(checked_run& run, link_kind kind, std::uint64_t ticks) {
     CHECK(m.delta_snapshots > sim.size() * ticks / 3 * 8 / 10);
     CHECK(m.delta_errors == 0);
 
+    // Every body of every view a client decoded had its shape at that moment.
+    CHECK(m.shapes_received > 0);
+    CHECK(m.bodies_without_shape == 0);
+
     // Inputs: the world applied, tick by tick, exactly the input the rule says (each consumed
     // once, in order), and every snapshot acknowledged the input consumed last.
     CHECK(run.inputs_applied > sim.size() * (ticks - 120));
@@ -202,6 +206,48 @@ TEST_CASE("64 clients play 6000 ticks over a stream at 100 ms ± 20 ms and 5 % l
 
 TEST_CASE("64 clients play 6000 ticks over datagrams at 100 ms ± 20 ms and 5 % loss each way", "[simnet][match]") {
     play_64_clients(link_kind::datagram);
+}
+
+TEST_CASE("every body a client sees has its shape, with views coming and going over lossy, reordering links",
+          "[simnet][match][shapes]") {
+    // A small view radius: bodies enter and leave the views all the time, and each entry needs
+    // its shape to arrive, over datagrams that lose, duplicate and reorder (shapes confirmed by
+    // acks) and over a stream to clients of full BodyState snapshots (described once).
+    const link_kind kind = GENERATE(link_kind::datagram, link_kind::stream);
+    const bool delta = kind == link_kind::datagram;
+    INFO((delta ? "datagrams, delta snapshots" : "stream, BodyState snapshots"));
+    sim_options o;
+    o.kind = kind;
+    o.clients = 12;
+    o.up = o.down = internet();
+    if (delta) {
+        o.up.loss = o.down.loss = 0.15;
+        o.up.duplicate = o.down.duplicate = 0.05;
+        o.up.reorder = o.down.reorder = 0.1;
+    }
+    o.delta_snapshots = delta;
+    o.seed = 77;
+    match::match_config config = match_config(12);
+    config.view_radius = 60;
+    match_sim sim(config, *world::preset_by_name("asteroids"), o);
+    sim.run_ticks(1800);
+    const bots::fleet_metrics& m = sim.shared().metrics();
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+        INFO("client " << i << ": " << sim.client(i).outcome().reason);
+        REQUIRE(sim.client(i).current() == phase::playing);
+    }
+    const match::match_counters counters = sim.match().counters();
+    INFO("shapes received " << m.shapes_received << " (" << m.shape_bytes << " bytes), sent "
+                            << counters.snapshots.shapes_sent << ", bodies in views " << m.view_bodies);
+    CHECK(m.view_bodies > 5 * m.shapes_received);  // each shape serves many snapshots
+    CHECK(m.shapes_received > 10 * o.clients);     // and views changed: many more than the first ones
+    CHECK(m.bodies_without_shape == 0);
+    if (delta) {
+        CHECK(m.stale_messages > 0);                                // reordering happened
+        CHECK(counters.snapshots.shapes_sent > m.shapes_received);  // some were lost and sent again
+    } else {
+        CHECK(counters.snapshots.shapes_sent >= m.shapes_received);  // the rest still in flight
+    }
 }
 
 TEST_CASE("the same seed plays the same match, another seed another", "[simnet][match][determinism]") {
