@@ -28,6 +28,17 @@ float clamp_unit(float v) {
 // A seek waypoint counts as reached within this distance, m.
 constexpr float waypoint_reached = 5.0f;
 
+// The Asteroids rules' fire button (server/rules/asteroids_rules.hpp; bit 0 is the boost).
+constexpr std::uint8_t button_fire = 1u << 1;
+// Their bullets' speed from rest, m/s (J / m_bullet): how far ahead of its prey a hunter aims.
+constexpr float bullet_speed = 40.0f;
+// A hunter ignores bodies this much faster than itself (bullets, its own included), m/s.
+constexpr float bullet_like_speed = 25.0f;
+// Closer than this to the edge-less centre of its prey, a hunter steers away (a rock would kill it), m.
+constexpr float danger_distance = 12.0f;
+// It fires when its facing is within acos(0.98) ≈ 11° of the aim and the prey this near, m.
+constexpr float fire_range = 80.0f;
+
 }  // namespace
 
 std::optional<behavior_choice> parse_behavior(std::string_view name) {
@@ -36,6 +47,7 @@ std::optional<behavior_choice> parse_behavior(std::string_view name) {
     if (name == "orbit") return behavior_choice::orbit;
     if (name == "idle") return behavior_choice::idle;
     if (name == "mixed") return behavior_choice::mixed;
+    if (name == "hunter") return behavior_choice::hunter;
     return std::nullopt;
 }
 
@@ -49,6 +61,8 @@ std::string_view to_string(behavior_kind kind) {
             return "orbit";
         case behavior_kind::idle:
             return "idle";
+        case behavior_kind::hunter:
+            return "hunter";
     }
     return "unknown";
 }
@@ -63,12 +77,14 @@ behavior_kind resolve_behavior(behavior_choice choice, std::uint32_t index) {
             return behavior_kind::orbit;
         case behavior_choice::idle:
             return behavior_kind::idle;
+        case behavior_choice::hunter:
+            return behavior_kind::hunter;
         case behavior_choice::mixed:
             break;
     }
     static constexpr behavior_kind cycle[] = {behavior_kind::random, behavior_kind::seek, behavior_kind::orbit,
-                                              behavior_kind::idle};
-    return cycle[index % 4];
+                                              behavior_kind::idle, behavior_kind::hunter};
+    return cycle[index % 5];
 }
 
 behavior::behavior(behavior_kind kind, std::uint64_t seed, std::uint32_t index, const world::world_config& config)
@@ -98,6 +114,8 @@ player_input behavior::next(const observation& seen) {
             return seen.own ? seek(*seen.own) : player_input{};
         case behavior_kind::orbit:
             return seen.own ? orbit(*seen.own) : player_input{};
+        case behavior_kind::hunter:
+            return seen.own ? hunt(*seen.own) : player_input{};
     }
     return {};
 }
@@ -107,6 +125,7 @@ player_input behavior::random_walk() {
 }
 
 void behavior::observe(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {
+    if (kind_ == behavior_kind::hunter) observe_prey(bodies, own_id);
     if (kind_ != behavior_kind::seek) return;
     if (target_id_ != 0) {
         // Bodies come in increasing id order: a binary search, not a scan of every body.
@@ -135,6 +154,43 @@ player_input behavior::seek(const world::body& own) {
     }
     if (to.squaredNorm() < 1e-6f) return {};
     return steer(own, to);
+}
+
+void behavior::observe_prey(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {
+    const auto own = std::lower_bound(bodies.begin(), bodies.end(), own_id,
+                                      [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
+    prey_.reset();
+    if (own == bodies.end() || own->id() != own_id) return;
+    const vec2 at{own->x(), own->y()};
+    const vec2 moving{own->vx(), own->vy()};
+    float nearest = 0;
+    for (const protocol::BodyState& b : bodies) {
+        if (b.id() == own_id) continue;
+        const vec2 v{b.vx(), b.vy()};
+        if ((v - moving).squaredNorm() > bullet_like_speed * bullet_like_speed) continue;
+        const float d = world::displacement(at, vec2{b.x(), b.y()}, config_).squaredNorm();
+        if (prey_ && d >= nearest) continue;
+        nearest = d;
+        prey_ = vec2{b.x(), b.y()};
+        prey_velocity_ = v;
+    }
+}
+
+player_input behavior::hunt(const world::body& own) {
+    if (!prey_) return orbit(own);  // nothing in view: patrol
+    const vec2 to = world::displacement(own.position, *prey_, config_);
+    const float distance = std::sqrt(to.squaredNorm());
+    if (distance < 1e-3f) return {};
+    if (distance < danger_distance) return steer(own, -to);
+    // Lead the prey by its velocity relative to ours over the bullet's flight time.
+    const float flight = distance / bullet_speed;
+    const vec2 aim = to + (prey_velocity_ - own.velocity) * flight;
+    if (aim.squaredNorm() < 1e-6f) return {};
+    player_input in = steer(own, aim);
+    const world::cos_sin facing = world::compute_cos_sin(own.angle);
+    const float aligned = (facing.c * aim.x() + facing.s * aim.y()) / std::sqrt(aim.squaredNorm());
+    if (aligned > 0.98f && distance < fire_range) in.buttons = static_cast<std::uint8_t>(in.buttons | button_fire);
+    return in;
 }
 
 player_input behavior::orbit(const world::body& own) {

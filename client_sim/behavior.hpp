@@ -22,14 +22,15 @@ enum class behavior_kind : std::uint8_t {
     seek,    // chases another body seen in the snapshots (a waypoint when alone)
     orbit,   // circles a point of its own
     idle,    // zero input: the body only drifts
+    hunter,  // Asteroids: turns to the nearest rock or ship, leads it, fires when lined up, shies from rocks
 };
 
 // The --behavior flag: one kind for every bot, or `mixed`, a kind per bot by its index.
-enum class behavior_choice : std::uint8_t { random, seek, orbit, idle, mixed };
+enum class behavior_choice : std::uint8_t { random, seek, orbit, idle, mixed, hunter };
 
 std::optional<behavior_choice> parse_behavior(std::string_view name);
 std::string_view to_string(behavior_kind kind);
-// `mixed` cycles random, seek, orbit, idle over the bot indices.
+// `mixed` cycles random, seek, orbit, idle, hunter over the bot indices.
 behavior_kind resolve_behavior(behavior_choice choice, std::uint32_t index);
 
 // What a behaviour sees on a tick.
@@ -56,6 +57,8 @@ private:
     world::player_input random_walk();
     world::player_input seek(const world::body& own);
     world::player_input orbit(const world::body& own);
+    world::player_input hunt(const world::body& own);
+    void observe_prey(std::span<const protocol::BodyState> bodies, std::uint32_t own_id);
     // Turn and thrust that head the body along `direction` (any length, non-zero).
     world::player_input steer(const world::body& own, const world::vec2& direction);
     world::vec2 random_point();
@@ -69,6 +72,9 @@ private:
     std::uint32_t target_id_ = 0;
     std::optional<world::vec2> target_;  // m, where the target was last seen (or the waypoint)
     bool target_is_waypoint_ = true;
+    // hunter: the nearest body worth shooting in the last snapshot
+    std::optional<world::vec2> prey_;  // m, where it was
+    world::vec2 prey_velocity_{0, 0};  // m/s
     // orbit
     world::vec2 centre_{0, 0};  // m
     float radius_ = 0;          // m

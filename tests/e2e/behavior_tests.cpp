@@ -86,14 +86,16 @@ TEST_CASE("inputs are finite and within [-1, 1], and idle sends zeros", "[bots][
     }
 }
 
-TEST_CASE("mixed gives each bot index a kind, cycling through all four", "[bots][behavior]") {
+TEST_CASE("mixed gives each bot index a kind, cycling through all five", "[bots][behavior]") {
     using arena::bots::behavior_choice;
     using arena::bots::resolve_behavior;
     CHECK(resolve_behavior(behavior_choice::mixed, 0) == behavior_kind::random);
     CHECK(resolve_behavior(behavior_choice::mixed, 1) == behavior_kind::seek);
     CHECK(resolve_behavior(behavior_choice::mixed, 2) == behavior_kind::orbit);
     CHECK(resolve_behavior(behavior_choice::mixed, 3) == behavior_kind::idle);
-    CHECK(resolve_behavior(behavior_choice::mixed, 4) == behavior_kind::random);
+    CHECK(resolve_behavior(behavior_choice::mixed, 4) == behavior_kind::hunter);
+    CHECK(resolve_behavior(behavior_choice::mixed, 5) == behavior_kind::random);
+    CHECK(resolve_behavior(behavior_choice::hunter, 2) == behavior_kind::hunter);
     CHECK(resolve_behavior(behavior_choice::orbit, 1) == behavior_kind::orbit);
     CHECK(arena::bots::parse_behavior("seek") == behavior_choice::seek);
     CHECK_FALSE(arena::bots::parse_behavior("dance").has_value());
@@ -135,4 +137,36 @@ TEST_CASE("orbit keeps a ship circling: it moves but stays within its circle's r
     CHECK(travelled > 100.0f);
     // ... yet its average speed is bounded by the ship's top speed (about 26 m/s).
     CHECK(travelled / 30.0f < 30.0f);
+}
+
+TEST_CASE("hunter leads its prey, fires when lined up, ignores bullets and shies from close rocks",
+          "[bots][behavior]") {
+    world::world_config config = *world::preset_by_name("asteroids");
+    world::body own = world::make_body(config.player, {100, 100});  // angle 0: facing +x, at rest
+    own.id = 1;
+    const auto react = [&](std::initializer_list<BodyState> others) {
+        behavior bot(behavior_kind::hunter, 1, 0, config);
+        std::vector<BodyState> bodies{BodyState(1, 1, 100, 100, 0, 0, 0, 0)};
+        bodies.insert(bodies.end(), others);
+        bot.observe(bodies, 1);
+        return bot.next({&own});
+    };
+    constexpr std::uint8_t fire = 1u << 1;
+    // Straight ahead, still, 40 m: lined up, so it thrusts and fires.
+    const world::player_input ahead = react({BodyState(2, 0, 140, 100, 0, 0, 0, 0)});
+    CHECK((ahead.buttons & fire) != 0);
+    CHECK(ahead.thrust > 0.5f);
+    // The same rock moving +y at 10 m/s: it aims ahead of it (counter-clockwise) and holds fire.
+    const world::player_input leading = react({BodyState(2, 0, 140, 100, 0, 10, 0, 0)});
+    CHECK(leading.turn > 0.1f);
+    CHECK((leading.buttons & fire) == 0);
+    // A bullet-fast body nearer than the rock is not prey.
+    const world::player_input past_bullet =
+        react({BodyState(2, 0, 104, 100, 40, 0, 0, 0), BodyState(3, 0, 140, 100, 0, 0, 0, 0)});
+    CHECK((past_bullet.buttons & fire) != 0);
+    // 6 m ahead: too close, it turns away (hard) and neither thrusts into it nor fires.
+    const world::player_input close = react({BodyState(2, 0, 106, 100, 0, 0, 0, 0)});
+    CHECK(std::abs(close.turn) == 1.0f);
+    CHECK(close.thrust == 0.0f);
+    CHECK((close.buttons & fire) == 0);
 }
