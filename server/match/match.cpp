@@ -323,6 +323,7 @@ void match::tick() {
     // its last body id (snapshots then show an empty view, and a leave names that body).
     for (auto& [id, p] : players_)
         if (const uint32_t body = rules_->body_of(id); body != 0) p.body_id = body;
+    tag_new_bodies();
     // Taken out of the list first: a send may end a connection (a Reject while sending), whose
     // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the
     // list itself then skipped a reconnected player's Welcome.
@@ -334,6 +335,17 @@ void match::tick() {
 
     check_clients();
     send_snapshots();
+}
+
+void match::tag_new_bodies() {
+    if (!rules_->has_state()) return;  // sandbox rules tag nothing
+    // Ids only grow, and bodies are in id order: the new ones are the tail.
+    const std::span<const world::body> bodies = world_.bodies();
+    auto it = std::lower_bound(bodies.begin(), bodies.end(), kinds_asked_below_,
+                               [](const world::body& b, uint32_t id) { return b.id < id; });
+    for (; it != bodies.end(); ++it)
+        if (const uint8_t kind = rules_->kind_of(it->id); kind != 0) kinds_.set(it->id, kind);
+    if (!bodies.empty()) kinds_asked_below_ = std::max(kinds_asked_below_, bodies.back().id + 1);
 }
 
 void match::check_clients() {

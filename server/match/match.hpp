@@ -172,6 +172,7 @@ private:
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
+    void tag_new_bodies();  // the rules' kind of each body that appeared since the last tick
     void send_snapshot(player& p);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
@@ -195,7 +196,8 @@ private:
     bool draining_ = false;
     snapshot_fanout fanout_;
     body_kinds kinds_;
-    match_counters counters_;  // departed players' buffers folded in on leave
+    uint32_t kinds_asked_below_ = 0;  // the rules were asked the kind of every body id below this
+    match_counters counters_;         // departed players' buffers folded in on leave
 };
 
 }  // namespace arena::match

@@ -311,6 +311,14 @@ uint32_t asteroids_rules::body_of(uint32_t player) const {
     return it == players_.end() ? 0 : it->second.ship;
 }
 
+uint8_t asteroids_rules::kind_of(uint32_t body_id) const {
+    if (rocks_.count(body_id)) return kind_rock;
+    if (bullets_.count(body_id)) return kind_bullet;
+    for (const auto& [id, p] : players_)
+        if (p.ship == body_id) return kind_ship;
+    return 0;
+}
+
 uint32_t asteroids_rules::rock_size(uint32_t id) const {
     const auto it = rocks_.find(id);
     return it == rocks_.end() ? 0 : it->second;

@@ -29,6 +29,11 @@ inline constexpr uint32_t category_rock = 1u << 0;
 inline constexpr uint32_t category_ship = 1u << 1;
 inline constexpr uint32_t category_bullet = 1u << 2;
 
+// BodyShape.kind of the game's bodies (protocol/README.md); a rock's size is in its shape.
+inline constexpr uint8_t kind_ship = 1;
+inline constexpr uint8_t kind_rock = 2;
+inline constexpr uint8_t kind_bullet = 3;
+
 struct asteroids_params {
     world::real bullet_impulse = 2.0f;    // N·s, J
     world::real bullet_mass = 0.05f;      // kg: 40 m/s from J = 2 N·s
@@ -56,6 +61,7 @@ public:
     void after_step(world::world& w) override;
 
     uint32_t body_of(uint32_t player) const override;
+    uint8_t kind_of(uint32_t body_id) const override;
     bool has_state() const override { return true; }
     void hash(world::fnv1a& h) const override;
     std::vector<score_line> scoreboard() const override;

@@ -46,6 +46,9 @@ public:
     // The body `player` controls now, or 0 when it has none of the rules' making (sandbox
     // rules: the body the match spawned stays the player's).
     virtual uint32_t body_of(uint32_t /*player*/) const { return 0; }
+    // What body `id` is, for drawing (protocol BodyShape.kind: the game defines the values);
+    // 0 = a plain body. The match asks once, in the tick the body appears.
+    virtual uint8_t kind_of(uint32_t /*body_id*/) const { return 0; }
     // False: the rules keep no state, and the state hash is the world's own.
     virtual bool has_state() const { return false; }
     // Every field of the rules' state, in a fixed order.

@@ -306,3 +306,39 @@ TEST_CASE("a snapshot rate that does not divide the tick rate is refused: the We
     REQUIRE(c.snapshot_ticks.size() >= 2);
     CHECK(c.snapshot_ticks[1] - c.snapshot_ticks[0] == 60u / welcome.value.snapshot_rate);
 }
+
+TEST_CASE("under game rules the match tags each new body with the rules' kind and keeps score by name",
+          "[match][rules]") {
+    world::world_config config = world::asteroids_preset();
+    config.rules = world::game_rules::asteroids;
+    match::match g(make_config(2), config);
+    fake_client c;
+    const uint32_t player = join(g, c, hello());
+    REQUIRE(player != 0);
+    g.tick();
+    const uint32_t ship = g.game_rules().body_of(player);
+    REQUIRE(ship != 0);
+    CHECK(g.body_kind(ship) == 1);
+    CHECK(g.body_kind(1) == 2);  // the first rock
+    // Fire (button bit 1): the bullet appears and is tagged in the same tick.
+    protocol::input_msg in;
+    in.sequence = 1;
+    in.buttons = 1u << 1;
+    REQUIRE(send_input(g, c, in));
+    g.tick();
+    const uint32_t bullet = g.state().bodies().back().id;
+    CHECK(bullet > ship);
+    CHECK(g.body_kind(bullet) == 3);
+    const auto board = g.scoreboard();
+    REQUIRE(board.size() == 1);
+    CHECK(board[0].name == "tester");
+    CHECK(board[0].line.shots == 1);
+    CHECK(g.counters().shots == 1);
+    // Sandbox rules tag nothing.
+    match::match sandbox(make_config(2), world::asteroids_preset());
+    fake_client d;
+    REQUIRE(join(sandbox, d, hello()) != 0);
+    sandbox.tick();
+    CHECK(sandbox.body_kind(1) == 0);
+    CHECK(sandbox.scoreboard().empty());
+}
