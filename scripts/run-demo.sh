@@ -9,11 +9,14 @@ seconds=${DEMO_SECONDS:-10}
 log=$(mktemp /tmp/arena-demo.XXXXXX)
 stats="$log.stats.json"
 recording="$log.arpl"
-trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording"' EXIT
+config="$log.game.json"
+trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording" "$config"' EXIT
+# The asteroids preset played as a game: bullets, splitting rocks, lives and score.
+echo '{"preset": "asteroids", "rules": "asteroids"}' > "$config"
 
 echo "== arena-server (asteroids) with $bots bots for $seconds s =="
-"$bin/arena-server" --port 0 --max-players "$bots" --duration $((seconds + 3)) --stats-json "$stats" \
-  --record "$recording" > "$log" 2> "$log.err" &
+"$bin/arena-server" --port 0 --config "$config" --max-players "$bots" --duration $((seconds + 3)) \
+  --stats-json "$stats" --record "$recording" > "$log" 2> "$log.err" &
 server=$!
 port=""
 for _ in $(seq 100); do
@@ -28,8 +31,14 @@ wait "$server"
 echo "== the server's log =="
 grep -E "stats|shutting down|recorded" "$log.err" || true
 rm -f "$log.err"
+echo "== the scoreboard (--stats-json) =="
+python3 -c 'import json, sys
+for p in json.load(open(sys.argv[1]))["scoreboard"]:
+    print("{name:>8} score {score:>5}  kills {kills:>2}  deaths {deaths:>2}  shots {shots:>4}  hits {hits:>4}".format(**p))' "$stats"
 echo "== replaying the recorded session =="
 "$bin/arena-replay" "$recording"
+echo "== the replay's scoreboard (arena-replay --scoreboard) =="
+"$bin/arena-replay" "$recording" --scoreboard 2>/dev/null
 
 echo "== the lecture's example: 10 N on 1 kg, dt = 1 s, explicit Euler (exact: 500 m) =="
 "$bin/arena-sim" --integrator explicit --dt 1 --steps 10 --mass 1 --force 10,0
