@@ -163,13 +163,13 @@ bool bench_replay(uint32_t players, uint32_t ticks, const std::string& path) {
         }
         replay::recorder& rec = opened.value;
         world::rng script(11);
-        std::vector<uint32_t> body_of;  // by player
+        std::vector<world::body_id> body_of;  // by player
         std::vector<world::player_input> stick(players);
         for (uint32_t k = 0; k < ticks; ++k) {
             match::tick_record record;
             record.tick = w.tick();
             if (k == 0)
-                for (uint32_t p = 1; p <= players; ++p) record.joins.push_back(p);
+                for (uint32_t p = 1; p <= players; ++p) record.joins.emplace_back(p);
             for (uint32_t p = 0; p < body_of.size(); ++p) {
                 // A human's stick: held for a while, then moved.
                 scenes::move_stick_now_and_then(script, stick[p]);

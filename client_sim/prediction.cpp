@@ -32,7 +32,7 @@ predictor::predictor(const world::world_config& server_config, std::uint32_t ent
       player_id_(player_id),
       acked_(config_, 0),
       predicted_(config_, 0),
-      inputs_{world::body_input{entity_id, {}}} {
+      inputs_{world::body_input{world::body_id{entity_id}, {}}} {
     pending_.reserve(64);
 }
 

@@ -64,7 +64,7 @@ uint32_t match::snapshot_interval() const {
 
 uint32_t match::player_of(const connection& c) const {
     auto it = clients_.find(&c);
-    return it == clients_.end() ? 0 : it->second.player_id;
+    return it == clients_.end() ? 0 : it->second.player_id.value();
 }
 
 bool match::connect(connection& c) {
@@ -149,11 +149,16 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         reject(c, *no);
         return false;
     }
-    uint32_t id = 0;
+    world::player_id id;
     if (std::get<join_kind>(verdict) == join_kind::new_player) {
         if (players_.size() >= config_.max_players) give_up_oldest_in_grace();
-        id = next_player_id_++;
-        players_.emplace(id, player{&c, admitted.name, admitted.identity, 0, 0, input_buffer(config_.input_buffer),
+        id = world::player_id{next_player_id_++};
+        players_.emplace(id, player{&c,
+                                    admitted.name,
+                                    admitted.identity,
+                                    0,
+                                    {},
+                                    input_buffer(config_.input_buffer),
                                     snapshot_client(baseline_ring(), hello.delta_snapshots)});
         pending_joins_.push_back(id);
     } else {
@@ -172,8 +177,8 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         }
         p.inputs = input_buffer(config_.input_buffer);
         p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
-        if (p.body_id != 0) pending_welcomes_.push_back(id);
-        log_("reconnect player=%u body=%u name=%s", id, p.body_id, p.name.c_str());
+        if (p.body_id) pending_welcomes_.push_back(id);
+        log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
     }
     cl.player_id = id;
     cl.standing.at = client_standing::stage::joined;  // a new connection numbers its inputs from 1 again
@@ -181,7 +186,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     --awaiting_hello_;
     const std::string_view peer = c.peer();
     // The admitted name: the signed one with a token secret, never merely the claimed one.
-    log_("hello player=%u name=%s from %.*s", id, players_.at(id).name.c_str(), static_cast<int>(peer.size()),
+    log_("hello player=%u name=%s from %.*s", id.value(), players_.at(id).name.c_str(), static_cast<int>(peer.size()),
          peer.data());
     return true;
 }
@@ -256,10 +261,10 @@ void match::shut_down(std::string_view reason) {
 void match::forget(client_map::iterator it, const close_cause& cause) {
     ++counters_.closes[cause.key()];
     const connection* c = it->first;
-    const uint32_t player_id = it->second.player_id;
+    const world::player_id player_id = it->second.player_id;
     if (it->second.standing.at == client_standing::stage::awaiting_hello) --awaiting_hello_;
     clients_.erase(it);
-    if (player_id == 0) return;
+    if (!player_id) return;
     auto p = players_.find(player_id);
     if (p != players_.end() && p->second.who == c) leave(p, cause);
 }
@@ -267,12 +272,11 @@ void match::forget(client_map::iterator it, const close_cause& cause) {
 void match::leave(player_map::iterator it, const close_cause& cause) {
     player& p = it->second;
     const std::string reason = cause.text();
-    if (cause.connection_lost() && !draining_ && !p.identity.empty() && p.body_id != 0 &&
-        config_.reconnect_grace_s > 0) {
+    if (cause.connection_lost() && !draining_ && !p.identity.empty() && p.body_id && config_.reconnect_grace_s > 0) {
         p.who = nullptr;
         p.disconnected_at_tick = world_.tick();
-        log_("disconnect player=%u name=%s reason=%s (body kept for %.0f s)", it->first, p.name.c_str(), reason.c_str(),
-             config_.reconnect_grace_s);
+        log_("disconnect player=%u name=%s reason=%s (body kept for %.0f s)", it->first.value(), p.name.c_str(),
+             reason.c_str(), config_.reconnect_grace_s);
         return;
     }
     remove_player(it, reason);
@@ -280,7 +284,7 @@ void match::leave(player_map::iterator it, const close_cause& cause) {
 
 void match::remove_player(player_map::iterator it, std::string_view reason) {
     player& p = it->second;
-    if (p.body_id != 0) {
+    if (p.body_id) {
         pending_leaves_.push_back(p.body_id);
     } else {
         std::erase(pending_joins_, it->first);
@@ -289,7 +293,7 @@ void match::remove_player(player_map::iterator it, std::string_view reason) {
     counters_.input_underruns += p.inputs.underruns();
     counters_.input_overflows += p.inputs.overflows();
     ++counters_.leaves;
-    log_("leave player=%u name=%s reason=%.*s", it->first, p.name.c_str(), static_cast<int>(reason.size()),
+    log_("leave player=%u name=%s reason=%.*s", it->first.value(), p.name.c_str(), static_cast<int>(reason.size()),
          reason.data());
     players_.erase(it);
 }
@@ -314,21 +318,21 @@ void match::tick() {
     pending_leaves_.clear();
     for (auto& [id, p] : players_) {
         // A disconnected player's body coasts: no thrust, no turn, no buttons.
-        if (p.body_id != 0) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
+        if (p.body_id) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
     }
-    const std::vector<uint32_t> spawned = apply_tick(world_, *rules_, record);
+    const std::vector<world::body_id> spawned = apply_tick(world_, *rules_, record);
     if (on_tick) on_tick(record, rules::state_hash(world_, *rules_));
     spawn_pending(record.joins, spawned);
     // A ship the rules respawned is the player's body from now on; a player without one keeps
     // its last body id (snapshots then show an empty view, and a leave names that body).
     for (auto& [id, p] : players_)
-        if (const uint32_t body = rules_->body_of(id); body != 0) p.body_id = body;
+        if (const uint32_t body = rules_->body_of(id.value()); body != 0) p.body_id = world::body_id{body};
     tag_new_bodies();
     // Taken out of the list first: a send may end a connection (a Reject while sending), whose
     // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the
     // list itself then skipped a reconnected player's Welcome.
-    const std::vector<uint32_t> welcomes = std::exchange(pending_welcomes_, {});
-    for (uint32_t id : welcomes) {
+    const std::vector<world::player_id> welcomes = std::exchange(pending_welcomes_, {});
+    for (const world::player_id id : welcomes) {
         auto it = players_.find(id);
         if (it != players_.end() && it->second.who) send_welcome(id, it->second);
     }
@@ -362,12 +366,12 @@ void match::check_clients() {
     for (const refusal& r : refused) reject(*r.who, r.why);
 }
 
-void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies) {
+void match::spawn_pending(const std::vector<world::player_id>& owners, const std::vector<world::body_id>& bodies) {
     for (size_t i = 0; i < owners.size(); ++i) {
         auto it = players_.find(owners[i]);
         if (it == players_.end()) continue;
         player& p = it->second;
-        if (bodies[i] == 0) {
+        if (!bodies[i]) {
             if (p.who) reject(*p.who, {RejectCode::server_full, "the world has no room for another body"});
             continue;
         }
@@ -376,7 +380,7 @@ void match::spawn_pending(const std::vector<uint32_t>& owners, const std::vector
         ++counters_.joins;
         counters_.players_peak = std::max<uint32_t>(counters_.players_peak, static_cast<uint32_t>(players_.size()));
         if (p.who) send_welcome(owners[i], p);
-        log_("join player=%u body=%u name=%s", owners[i], p.body_id, p.name.c_str());
+        log_("join player=%u body=%u name=%s", owners[i].value(), p.body_id.value(), p.name.c_str());
     }
 }
 
@@ -396,11 +400,11 @@ protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) 
     return welcome;
 }
 
-void match::send_welcome(uint32_t player_id, player& p) {
+void match::send_welcome(world::player_id id, player& p) {
     const auto bodies = world_.bodies();
     // Ids grow: a static body added later has an id past this, and snapshots describe it.
     p.snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
-    p.who->send(protocol::encode_welcome(welcome_for(player_id, p.body_id)));
+    p.who->send(protocol::encode_welcome(welcome_for(id.value(), p.body_id.value())));
 }
 
 void match::send_snapshots() {
@@ -414,9 +418,9 @@ void match::send_snapshots() {
     fanout_.begin(world_, &kinds_);
     // By id rather than by iterator: a send may end a connection, and with it a player.
     for (auto it = players_.begin(); it != players_.end();) {
-        const uint32_t id = it->first;
+        const world::player_id id = it->first;
         player& p = it->second;
-        if (p.body_id != 0 && p.who && (p.snapshots.delta ? id % interval : 0) == phase) send_snapshot(p);
+        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase) send_snapshot(p);
         it = players_.upper_bound(id);
     }
 }
@@ -440,7 +444,7 @@ void match::send_snapshot(player& p) {
 std::vector<match::named_score> match::scoreboard() const {
     std::vector<named_score> out;
     for (const rules::score_line& line : rules_->scoreboard()) {
-        const auto it = names_.find(line.player);
+        const auto it = names_.find(world::player_id{line.player});
         out.push_back({it == names_.end() ? std::string() : it->second, line});
     }
     return out;

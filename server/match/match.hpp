@@ -143,7 +143,7 @@ private:
         std::string name;
         std::string identity;
         uint32_t disconnected_at_tick = 0;
-        uint32_t body_id = 0;  // 0 until spawned
+        world::body_id body_id;  // none (0) until spawned
         input_buffer inputs;
         snapshot_client snapshots;  // delta baselines and the client's acknowledgement
     };
@@ -151,10 +151,10 @@ private:
         uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
         std::string address;  // the peer's address without its port
         client_standing standing;
-        uint32_t player_id = 0;  // 0 until the Hello is accepted
+        world::player_id player_id;  // none (0) until the Hello is accepted
     };
     using client_map = std::unordered_map<const connection*, client>;
-    using player_map = std::map<uint32_t, player>;  // by player id: a deterministic order
+    using player_map = std::map<world::player_id, player>;  // by player id: a deterministic order
 
     bool on_hello(connection& c, client& cl, const protocol::hello_msg& hello);
     bool on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns);
@@ -166,8 +166,8 @@ private:
     // Forgets `it`: counts why it closed, and its player leaves or waits for a reconnection.
     void forget(client_map::iterator it, const close_cause& cause);
     void leave(player_map::iterator it, const close_cause& cause);
-    void spawn_pending(const std::vector<uint32_t>& owners, const std::vector<uint32_t>& bodies);
-    void send_welcome(uint32_t player_id, player& p);
+    void spawn_pending(const std::vector<world::player_id>& owners, const std::vector<world::body_id>& bodies);
+    void send_welcome(world::player_id id, player& p);
     void remove_player(player_map::iterator it, std::string_view reason);
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
@@ -181,17 +181,17 @@ private:
     logger log_;
     admission admission_;
     world::world world_;
-    std::unique_ptr<rules::rules> rules_;    // set up on world_, before anything else touches it
-    std::map<uint32_t, std::string> names_;  // every player who joined, for the scoreboard after they left
+    std::unique_ptr<rules::rules> rules_;            // set up on world_, before anything else touches it
+    std::map<world::player_id, std::string> names_;  // every player who joined, for the scoreboard after they left
     std::string world_config_json_;
     uint64_t world_config_hash_;
     client_map clients_;
     uint64_t next_serial_ = 1;
     size_t awaiting_hello_ = 0;  // clients that have not said Hello
     player_map players_;
-    std::vector<uint32_t> pending_joins_;     // player ids whose body spawns next tick
-    std::vector<uint32_t> pending_leaves_;    // body ids to remove next tick
-    std::vector<uint32_t> pending_welcomes_;  // reconnected players, welcomed after the next tick
+    std::vector<world::player_id> pending_joins_;     // players whose body spawns next tick
+    std::vector<world::body_id> pending_leaves_;      // bodies to remove next tick
+    std::vector<world::player_id> pending_welcomes_;  // reconnected players, welcomed after the next tick
     uint32_t next_player_id_ = 1;
     bool draining_ = false;
     snapshot_fanout fanout_;

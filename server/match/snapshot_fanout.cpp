@@ -76,7 +76,8 @@ void snapshot_fanout::count_shapes(const protocol::shape_list& list) {
     counters_.shape_bytes += list.wire_bytes();
 }
 
-void snapshot_fanout::find_view(uint32_t body_id) {
+void snapshot_fanout::find_view(world::body_id own_id) {
+    const uint32_t body_id = own_id.value();
     view_.clear();
     const auto bodies = world_->bodies();
     if (config_.view_radius <= 0) {
@@ -110,9 +111,9 @@ delta::shared_encoder& snapshot_fanout::encoder_for(uint32_t baseline_tick) {
     return slot->encoder;
 }
 
-std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, uint32_t body_id,
+std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, world::body_id own,
                                                       uint32_t ack_sequence) {
-    find_view(body_id);
+    find_view(own);
     // This tick's state first: recording it replaces the ring's oldest tick, which must not
     // be picked as a baseline below (and then overwritten under the encoder's feet).
     quantized();
@@ -141,8 +142,9 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, u
     return frame;
 }
 
-std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence) {
-    find_view(body_id);
+std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, world::body_id own,
+                                                     uint32_t ack_sequence) {
+    find_view(own);
     full_states_.clear();
     const auto& all = states();
     for (uint32_t i : view_) full_states_.push_back(all[i]);

@@ -64,8 +64,8 @@ public:
     // bodies' shapes (null: every body is kind 0); it must outlive the tick.
     void begin(const world::world& w, const body_kinds* kinds = nullptr);
 
-    // The frame for a delta client whose body is `body_id`. Valid until the next call.
-    std::span<const uint8_t> delta_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence);
+    // The frame for a delta client whose body is `own`. Valid until the next call.
+    std::span<const uint8_t> delta_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence);
 
     // True: BodyState clients share shared_frame(); false: each gets full_frame().
     [[nodiscard]] bool shared_full_frame() const { return config_.view_radius <= 0; }
@@ -73,14 +73,14 @@ public:
     // previous one (it then needs full_frame() to learn the shapes it lacks).
     [[nodiscard]] const protocol::snapshot_encoder* shared_frame(snapshot_client& client);
     // The BodyState frame of one client's view. Valid until the next call.
-    std::span<const uint8_t> full_frame(snapshot_client& client, uint32_t body_id, uint32_t ack_sequence);
+    std::span<const uint8_t> full_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence);
 
     [[nodiscard]] const fanout_counters& counters() const { return counters_; }
     [[nodiscard]] const fanout_config& config() const { return config_; }
 
 private:
-    // Indices (into the world's body span) of what the body `body_id` sees, into view_.
-    void find_view(uint32_t body_id);
+    // Indices (into the world's body span) of what the body `own` sees, into view_.
+    void find_view(world::body_id own);
     // This tick's work, each done once on first use.
     const std::vector<protocol::delta::quantized_body>& quantized();
     const std::vector<protocol::BodyState>& states();

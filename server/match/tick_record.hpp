@@ -12,18 +12,18 @@
 namespace arena::match {
 
 struct tick_record {
-    uint32_t tick = 0;             // the world's tick before this step
-    std::vector<uint32_t> joins;   // owner (player) ids, spawned in this order
-    std::vector<uint32_t> leaves;  // body ids removed, in this order
-    world::tick_inputs inputs;     // one per player body that consumed an input
+    uint32_t tick = 0;                    // the world's tick before this step
+    std::vector<world::player_id> joins;  // owners, spawned in this order
+    std::vector<world::body_id> leaves;   // bodies removed, in this order
+    world::tick_inputs inputs;            // one per player body that consumed an input
 };
 
 // Joins (world::spawn_player), then leaves (world::remove_body), then one step with the inputs.
-// Returns the body id spawned for each join, in order (0 when the world was full).
-std::vector<uint32_t> apply_tick(world::world& w, const tick_record& record);
+// Returns the body id spawned for each join, in order (none, 0, when the world was full).
+std::vector<world::body_id> apply_tick(world::world& w, const tick_record& record);
 // The same under game rules (server/rules/rules.hpp): the joins' bodies and the leaves go to
 // the rules first, the rules see the inputs before the step and the contact events after it.
 // The match and the replay both call this, so the rules' state replays bit for bit.
-std::vector<uint32_t> apply_tick(world::world& w, rules::rules& r, const tick_record& record);
+std::vector<world::body_id> apply_tick(world::world& w, rules::rules& r, const tick_record& record);
 
 }  // namespace arena::match

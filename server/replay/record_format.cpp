@@ -41,16 +41,18 @@ header decode_header(const fb::Header& h) {
 protocol::result<record> decode_tick(const fb::Tick& t) {
     match::tick_record out;
     out.tick = t.tick();
-    if (const auto* joins = t.joins()) out.joins.assign(joins->begin(), joins->end());
-    if (const auto* leaves = t.leaves()) out.leaves.assign(leaves->begin(), leaves->end());
+    if (const auto* joins = t.joins())
+        for (const uint32_t id : *joins) out.joins.emplace_back(id);
+    if (const auto* leaves = t.leaves())
+        for (const uint32_t id : *leaves) out.leaves.emplace_back(id);
     if (const auto* inputs = t.inputs()) {
         out.inputs.reserve(inputs->size());
         for (const fb::TickInput* in : *inputs) {
-            world::body_input b{in->body_id(), {in->thrust(), in->turn(), in->buttons()}};
+            world::body_input b{world::body_id{in->body_id()}, {in->thrust(), in->turn(), in->buttons()}};
             // NaN must never enter the world, whatever the file says.
             if (auto problem = world::check_input(b.input)) {
                 return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": input for body " +
-                                                         std::to_string(b.body_id) + ": " + *problem);
+                                                         std::to_string(b.body_id.value()) + ": " + *problem);
             }
             out.inputs.push_back(b);
         }
@@ -97,14 +99,21 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
     // Empty vectors are left out: most ticks have no joins or leaves.
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> joins, leaves;
     flatbuffers::Offset<flatbuffers::Vector<const fb::TickInput*>> inputs;
-    if (!t.joins.empty()) joins = builder_.CreateVector(t.joins);
-    if (!t.leaves.empty()) leaves = builder_.CreateVector(t.leaves);
+    // The ids' numbers, as they always were on disk.
+    auto numbers = [](const auto& ids) {
+        std::vector<uint32_t> out;
+        out.reserve(ids.size());
+        for (const auto id : ids) out.push_back(id.value());
+        return out;
+    };
+    if (!t.joins.empty()) joins = builder_.CreateVector(numbers(t.joins));
+    if (!t.leaves.empty()) leaves = builder_.CreateVector(numbers(t.leaves));
     if (!t.inputs.empty()) {
         fb::TickInput* slots = nullptr;
         inputs = builder_.CreateUninitializedVectorOfStructs(t.inputs.size(), &slots);
         for (size_t i = 0; i < t.inputs.size(); ++i) {
             const world::body_input& in = t.inputs[i];
-            slots[i] = fb::TickInput(in.body_id, in.input.thrust, in.input.turn, in.input.buttons);
+            slots[i] = fb::TickInput(in.body_id.value(), in.input.thrust, in.input.turn, in.input.buttons);
         }
     }
     fb::TickBuilder b(builder_);

@@ -13,6 +13,14 @@ using world::vec2;
 
 namespace {
 
+// The rules keep body ids as numbers; the world removes typed ids (server/world/ids.hpp).
+void remove_bodies(world::world& w, const std::vector<uint32_t>& ids) {
+    std::vector<world::body_id> typed;
+    typed.reserve(ids.size());
+    for (const uint32_t id : ids) typed.emplace_back(id);
+    w.remove_bodies(typed);
+}
+
 // 1/√2: a piece of half the area has 1/√2 of the radius.
 constexpr real half_area_scale = 0.70710678f;
 
@@ -73,14 +81,14 @@ void asteroids_rules::on_leaves(world::world& w, std::span<const uint32_t> bodie
             ++it;
         }
     }
-    w.remove_bodies(removals);
+    remove_bodies(w, removals);
 }
 
 void asteroids_rules::before_step(world::world& w, const world::tick_inputs& inputs) {
     // In body id order, whatever order the caller listed them in.
     std::vector<uint32_t> firing;
     for (const world::body_input& in : inputs)
-        if (in.input.buttons & button_fire) firing.push_back(in.body_id);
+        if (in.input.buttons & button_fire) firing.push_back(in.body_id.value());
     std::sort(firing.begin(), firing.end());
     for (const uint32_t id : firing) {
         const world::body* b = w.find(id);
@@ -237,7 +245,7 @@ void asteroids_rules::after_step(world::world& w) {
             ++it;
         }
     }
-    w.remove_bodies(removals);
+    remove_bodies(w, removals);
     for (auto& [id, p] : players_) {
         if (p.state != ship_state::playing || p.vulnerable_at != now) continue;
         if (world::body* b = w.find(p.ship)) b->filter.mask = ~0u;

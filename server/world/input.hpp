@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "server/world/ids.hpp"
 #include "server/world/types.hpp"
 
 namespace arena::world {
@@ -27,7 +28,7 @@ player_input clamp_input(const player_input& input);
 // One tick's inputs: at most one per body. The world applies them in body id order,
 // whatever order they are listed in.
 struct body_input {
-    uint32_t body_id = 0;
+    world::body_id body_id;
     player_input input{};
 };
 using tick_inputs = std::vector<body_input>;

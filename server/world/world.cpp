@@ -236,13 +236,13 @@ std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> poin
     return ids;
 }
 
-std::optional<uint32_t> world::spawn_player(uint32_t owner) {
-    const uint32_t id = spawn_players({&owner, 1})[0];
-    return id != 0 ? std::optional<uint32_t>(id) : std::nullopt;
+std::optional<body_id> world::spawn_player(player_id owner) {
+    const body_id id = spawn_players({&owner, 1})[0];
+    return id ? std::optional<body_id>(id) : std::nullopt;
 }
 
-std::vector<uint32_t> world::spawn_players(std::span<const uint32_t> owners) {
-    std::vector<uint32_t> ids;
+std::vector<body_id> world::spawn_players(std::span<const player_id> owners) {
+    std::vector<body_id> ids;
     ids.reserve(owners.size());
     if (owners.empty()) return ids;
     // One grid for every spawn of the batch: its cells are wider than any two radii together.
@@ -251,25 +251,27 @@ std::vector<uint32_t> world::spawn_players(std::span<const uint32_t> owners) {
     for (const body& b : bodies_) widest = std::max(widest, b.radius);
     spawn_grid grid(config_, widest + player_radius, bodies_.size() + owners.size());
     for (const body& b : bodies_) grid.add(b.position, b.radius);
-    for (const uint32_t owner : owners) {
+    for (const player_id owner : owners) {
         if (bodies_.size() >= config_.max_bodies) {
-            ids.push_back(0);
+            ids.emplace_back();
             continue;
         }
         body b = make_body(config_.player, random_free_position(player_radius, [&grid](const vec2& p, real r) {
                                return grid.is_free(p, r);
                            }));
-        b.owner = owner;
+        b.owner = owner.value();
         const auto id = add_body(b);
         if (id) grid.add(b.position, b.radius);
-        ids.push_back(id.value_or(0));
+        ids.emplace_back(id.value_or(0));
     }
     return ids;
 }
 
-void world::remove_bodies(std::span<const uint32_t> ids) {
+void world::remove_bodies(std::span<const body_id> ids) {
     if (ids.empty()) return;
-    std::vector<uint32_t> sorted(ids.begin(), ids.end());
+    std::vector<uint32_t> sorted;
+    sorted.reserve(ids.size());
+    for (const body_id id : ids) sorted.push_back(id.value());
     std::sort(sorted.begin(), sorted.end());
     auto removed = [&sorted](const body& b) {
         return std::binary_search(sorted.begin(), sorted.end(), b.id);

@@ -41,17 +41,20 @@ public:
     // friction and restitution. Returns the ids, or nothing when the world is full.
     std::optional<std::vector<uint32_t>> add_chain(std::span<const vec2> points, const body_material& material);
     // A player's body of the config's player material at a free spot drawn from the world's rng.
-    std::optional<uint32_t> spawn_player(uint32_t owner);
+    std::optional<body_id> spawn_player(player_id owner);
     // spawn_player for each owner in order, with the same results, in O(bodies + owners) tests
-    // rather than O(bodies × owners). Each entry is the body's id, or 0 when the world is full.
-    std::vector<uint32_t> spawn_players(std::span<const uint32_t> owners);
+    // rather than O(bodies × owners). Each entry is the body's id, or none (0) when the world is
+    // full.
+    std::vector<body_id> spawn_players(std::span<const player_id> owners);
     bool remove_body(uint32_t id);
     // remove_body for each id (unknown ids ignored), with the same result, in one pass over the
     // bodies: one erase per id moved the tail each time (quadratic for a tick of many leaves).
-    void remove_bodies(std::span<const uint32_t> ids);
+    void remove_bodies(std::span<const body_id> ids);
 
     body* find(uint32_t id);
     const body* find(uint32_t id) const;
+    body* find(body_id id) { return find(id.value()); }
+    const body* find(body_id id) const { return find(id.value()); }
     std::span<const body> bodies() const { return bodies_; }
     std::span<body> bodies() { return bodies_; }
     // The shape of `b` (one of this world's bodies): its own, or a circle of its radius.

@@ -124,7 +124,8 @@ TEST_CASE("each field at either end of its interval leaves a preset's world fini
             INFO(preset << ": " << field);
             world::world w(parsed(std::string(R"({"preset": ")") + preset + "\", " + field + "}"), 1);
             world::tick_inputs inputs;
-            for (uint32_t owner = 1; owner <= 4; ++owner) inputs.push_back({*w.spawn_player(owner), {1.0f, 1.0f, 1}});
+            for (uint32_t owner = 1; owner <= 4; ++owner)
+                inputs.push_back({*w.spawn_player(world::player_id{owner}), {1.0f, 1.0f, 1}});
             for (int k = 0; k < 600; ++k) w.step(inputs);
             CHECK(all_finite(w));
         }

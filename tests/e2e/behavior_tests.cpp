@@ -38,7 +38,7 @@ std::vector<world::player_input> drive(behavior_kind kind, std::uint64_t seed, s
         }
         const world::player_input in = bot.next({w.find(id)});
         out.push_back(in);
-        w.step({{id, in}});
+        w.step({{world::body_id{id}, in}});
     }
     return out;
 }
@@ -129,7 +129,7 @@ TEST_CASE("orbit keeps a ship circling: it moves but stays within its circle's r
     float travelled = 0;
     for (int t = 0; t < 60 * 30; ++t) {
         const world::vec2 before = w.find(id)->position;
-        w.step({{id, bot.next({w.find(id)})}});
+        w.step({{world::body_id{id}, bot.next({w.find(id)})}});
         const world::vec2 d = world::displacement(before, w.find(id)->position, config);
         travelled += std::sqrt(d.squaredNorm());
     }

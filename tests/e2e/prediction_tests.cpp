@@ -31,7 +31,7 @@ struct server_world {
         b.owner = player;
         id = *w.add_body(b);
     }
-    void step(const world::player_input& in) { w.step({{id, in}}); }
+    void step(const world::player_input& in) { w.step({{world::body_id{id}, in}}); }
     const world::body& own() const { return *w.find(id); }
     BodyState state() const {
         const world::body& b = own();

@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         // A config that loads must also build a world and step it; keep the fuzzer fast.
         if (c->rocks.count <= 64 && c->size.x() * c->size.y() < 1e8f) {
             world::world w(*c, 1);
-            w.spawn_player(1);
+            w.spawn_player(world::player_id{1});
             w.step({});
         }
         (void)config::parse_config_json(config::config_to_json(*c));

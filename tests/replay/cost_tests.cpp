@@ -86,7 +86,7 @@ TEST_CASE("30 000 joins in one tick replay in linear time, and more than a serve
     temp_file file("joins");
     const header h = asteroids_header();
     match::tick_record tick{0, {}, {}, {}};
-    for (uint32_t owner = 1; owner <= 30000; ++owner) tick.joins.push_back(owner);
+    for (uint32_t owner = 1; owner <= 30000; ++owner) tick.joins.emplace_back(owner);
     world::world w(world::asteroids_preset(), 1);
     match::apply_tick(w, tick);
     record_encoder encoder;
@@ -101,7 +101,7 @@ TEST_CASE("30 000 joins in one tick replay in linear time, and more than a serve
     bytes.clear();
     encoder.append(h, bytes);
     const uint64_t offset = bytes.size();
-    tick.joins.resize(max_joins_per_tick + 1, 7);
+    tick.joins.resize(max_joins_per_tick + 1, world::player_id{7});
     encoder.append(tick, bytes);
     encoder.append(end_marker{1, 0}, bytes);
     write_bytes(file.path(), bytes);
@@ -117,9 +117,9 @@ TEST_CASE("a tick of 30 000 leaves replays in linear time", "[replay][cost]") {
     temp_file file("leaves");
     const header h = asteroids_header();
     match::tick_record joins{0, {}, {}, {}}, leaves{1, {}, {}, {}};
-    for (uint32_t owner = 1; owner <= 30000; ++owner) joins.joins.push_back(owner);
+    for (uint32_t owner = 1; owner <= 30000; ++owner) joins.joins.emplace_back(owner);
     world::world w(world::asteroids_preset(), 1);
-    for (uint32_t id : match::apply_tick(w, joins)) leaves.leaves.push_back(id);
+    for (const world::body_id id : match::apply_tick(w, joins)) leaves.leaves.push_back(id);
     match::apply_tick(w, leaves);
     record_encoder encoder;
     std::vector<uint8_t> bytes;

@@ -77,9 +77,11 @@ TEST_CASE("a Header round-trips with every field", "[replay]") {
 TEST_CASE("a Tick round-trips with joins, leaves and the exact bits of every input", "[replay]") {
     match::tick_record t;
     t.tick = 99;
-    t.joins = {4, 9};
-    t.leaves = {2};
-    t.inputs = {{3, {-0.0f, 0.25f, world::button_impulse}}, {7, {1.0f, -1.0f, 0}}, {8, {0.1f, 0.0f, 0}}};
+    t.joins = {world::player_id{4}, world::player_id{9}};
+    t.leaves = {world::body_id{2}};
+    t.inputs = {{world::body_id{3}, {-0.0f, 0.25f, world::button_impulse}},
+                {world::body_id{7}, {1.0f, -1.0f, 0}},
+                {world::body_id{8}, {0.1f, 0.0f, 0}}};
     const match::tick_record out = round_trip(t);
     CHECK(out.tick == 99);
     CHECK(out.joins == t.joins);
@@ -114,7 +116,7 @@ TEST_CASE("Hash and End records round-trip", "[replay]") {
 TEST_CASE("a Tick with a non-finite input is refused: NaN never enters the world", "[replay]") {
     record_encoder encoder;
     std::vector<uint8_t> bytes;
-    match::tick_record t{3, {}, {}, {{5, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}};
+    match::tick_record t{3, {}, {}, {{world::body_id{5}, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}};
     encoder.append(t, bytes);
     const aligned_frame f = frame_of(bytes);
     const auto decoded = decode_record(f.span());

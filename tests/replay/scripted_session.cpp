@@ -26,11 +26,11 @@ constexpr scheduled schedule[] = {
 
 // A player's stick, held for a while like a human's, then moved.
 struct player {
-    uint32_t body_id = 0;
+    world::body_id body_id;
     world::player_input stick{};
 };
 
-world::tick_inputs draw_inputs(world::rng& script, std::map<uint32_t, player>& players) {
+world::tick_inputs draw_inputs(world::rng& script, std::map<world::player_id, player>& players) {
     world::tick_inputs inputs;
     for (auto& [owner, p] : players) {  // std::map: owner order, never hash order
         scenes::move_stick_now_and_then(script, p.stick);
@@ -59,7 +59,7 @@ protocol::result<session_result> record_scripted_session(const std::string& path
     session_result out;
     out.hashes.push_back(w.hash());
     world::rng inputs_rng(script.script_seed);
-    std::map<uint32_t, player> players;  // by owner
+    std::map<world::player_id, player> players;  // by owner
     for (uint32_t k = 0; k < script.ticks; ++k) {
         match::tick_record record;
         record.tick = w.tick();
@@ -68,22 +68,22 @@ protocol::result<session_result> record_scripted_session(const std::string& path
         for (const scheduled& s : schedule) {
             if (s.tick != record.tick) continue;
             if (s.join) {
-                record.joins.push_back(s.owner);
-            } else if (auto it = players.find(s.owner); it != players.end()) {
+                record.joins.emplace_back(s.owner);
+            } else if (auto it = players.find(world::player_id{s.owner}); it != players.end()) {
                 record.leaves.push_back(it->second.body_id);
                 players.erase(it);
             }
         }
         // A leaving player's input of this tick is dropped, as the server drops it.
         std::erase_if(record.inputs, [&](const world::body_input& in) {
-            for (uint32_t id : record.leaves) {
+            for (const world::body_id id : record.leaves) {
                 if (id == in.body_id) return true;
             }
             return false;
         });
-        const std::vector<uint32_t> spawned = match::apply_tick(w, record);
+        const std::vector<world::body_id> spawned = match::apply_tick(w, record);
         for (size_t i = 0; i < spawned.size(); ++i) {
-            if (spawned[i] != 0) players[record.joins[i]].body_id = spawned[i];
+            if (spawned[i]) players[record.joins[i]].body_id = spawned[i];
         }
         uint64_t hash = w.hash();
         out.hashes.push_back(hash);

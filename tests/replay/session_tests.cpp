@@ -124,7 +124,7 @@ TEST_CASE("a running recorder has every whole second of ticks on disk", "[replay
     auto opened = recorder::open(file.path(), make_header(w, "asteroids", 5, 30));
     REQUIRE(opened.ok());
     recorder& rec = opened.value;
-    const uint32_t player = *w.spawn_player(1);
+    const world::body_id player = *w.spawn_player(world::player_id{1});
     for (uint32_t k = 0; k < 75; ++k) {
         match::tick_record record{w.tick(), {}, {}, {{player, {1, 0.5f, 0}}}};
         match::apply_tick(w, record);

@@ -43,9 +43,9 @@ struct game {
     explicit game(const world::world_config& c) : w(c, 7), r(w) {}
 
     uint32_t join(uint32_t player) {
-        const uint32_t owners[] = {player};
-        const std::vector<uint32_t> bodies = w.spawn_players(owners);
-        r.on_joins(w, owners, bodies);
+        const world::player_id owners[] = {world::player_id{player}};
+        const uint32_t bodies[] = {w.spawn_players(owners)[0].value()};
+        r.on_joins(w, std::vector<uint32_t>{player}, bodies);
         return bodies[0];
     }
     void step(const world::tick_inputs& inputs = {}) {
@@ -83,7 +83,7 @@ struct game {
         ship->position = target->position - vec2{target->radius + ship->radius + distance, 0};
         ship->velocity = {0, 0};
         ship->angle = 0;
-        world::tick_inputs fire{{ship_id, {0, 0, rules::button_fire}}};
+        world::tick_inputs fire{{world::body_id{ship_id}, {0, 0, rules::button_fire}}};
         step(fire);
         for (int k = 0; k < 30 && r.rock_size(rock) != 0; ++k) step();
         REQUIRE(r.rock_size(rock) == 0);
@@ -99,7 +99,7 @@ TEST_CASE("a bullet leaves at J/m_bullet and the ship recoils at exactly -J/m_sh
     const world::cos_sin r = world::compute_cos_sin(0.5f);
     const vec2 facing{r.c, r.s};
     const rules::asteroids_params& p = g.r.params();
-    g.r.before_step(g.w, {{ship, {0, 0, rules::button_fire}}});
+    g.r.before_step(g.w, {{world::body_id{ship}, {0, 0, rules::button_fire}}});
     REQUIRE(g.w.bodies().size() == 2);
     const world::body& bullet = g.w.bodies()[1];
     CHECK(g.r.bullet_owner(bullet.id) == 1);
@@ -119,7 +119,7 @@ TEST_CASE("fire keeps a cooldown, a lifetime and a cap on live bullets", "[rules
     game g(one_rock(0));
     const uint32_t ship = g.join(1);
     const rules::asteroids_params& p = g.r.params();
-    const world::tick_inputs fire{{ship, {0, 0, rules::button_fire}}};
+    const world::tick_inputs fire{{world::body_id{ship}, {0, 0, rules::button_fire}}};
     uint32_t first_fire_tick = 0;
     std::vector<uint32_t> fired_at;
     for (uint32_t k = 0; k < 60; ++k) {
@@ -200,7 +200,7 @@ TEST_CASE("momentum across a split, measured in the step of the hit", "[rules][a
     ship->velocity = {0, 0};
     ship->angle = 0;
     const uint32_t ship_id = ship->id;
-    g.r.before_step(g.w, {{ship_id, {0, 0, rules::button_fire}}});
+    g.r.before_step(g.w, {{world::body_id{ship_id}, {0, 0, rules::button_fire}}});
     vec2 before{0, 0};
     for (int k = 0; k < 30; ++k) {
         g.w.step({});
@@ -265,7 +265,7 @@ TEST_CASE("shooting another player's ship scores 200 and a kill", "[rules][aster
     b->position = {110, 100};
     b->velocity = {0, 0};
     const uint32_t shooter = a->id;
-    g.step({{shooter, {0, 0, rules::button_fire}}});
+    g.step({{world::body_id{shooter}, {0, 0, rules::button_fire}}});
     for (int k = 0; k < 30 && g.r.body_of(2) != 0; ++k) g.step();
     CHECK(g.r.body_of(2) == 0);
     CHECK(g.score(1).score == 200);
@@ -295,7 +295,7 @@ TEST_CASE("sandbox rules keep no state: the state hash is the world's", "[rules]
     const std::unique_ptr<rules::rules> r = rules::make_rules(w);
     CHECK_FALSE(r->has_state());
     match::tick_record t;
-    t.joins = {1};
+    t.joins = {world::player_id{1}};
     match::apply_tick(w, *r, t);
     CHECK(rules::state_hash(w, *r) == w.hash());
     CHECK(r->scoreboard().empty());
@@ -323,7 +323,7 @@ scripted_result scripted_match(uint32_t ticks, replay::recorder* rec = nullptr) 
     for (uint32_t t = 0; t < ticks; ++t) {
         match::tick_record record;
         record.tick = w.tick();
-        if (t == 0) record.joins = {1, 2, 3, 4};
+        if (t == 0) record.joins = {world::player_id{1}, world::player_id{2}, world::player_id{3}, world::player_id{4}};
         for (uint32_t p = 1; p <= 4; ++p) {
             const uint32_t body = r->body_of(p);
             if (body == 0) continue;
@@ -331,7 +331,7 @@ scripted_result scripted_match(uint32_t ticks, replay::recorder* rec = nullptr) 
             in.thrust = (t / (40 + 10 * p)) % 2 == 0 ? 0.6f : 0.0f;
             in.turn = (t / (25 + 5 * p)) % 3 == 0 ? 0.5f : ((t / (25 + 5 * p)) % 3 == 1 ? -0.4f : 0.0f);
             in.buttons = (t + p) % 4 == 0 ? rules::button_fire : 0;
-            record.inputs.push_back({body, in});
+            record.inputs.push_back({world::body_id{body}, in});
         }
         match::apply_tick(w, *r, record);
         if (rec) REQUIRE(rec->record_tick(record, rules::state_hash(w, *r)).ok());

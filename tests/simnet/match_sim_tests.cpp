@@ -68,7 +68,7 @@ struct checked_run {
             for (std::size_t i = 0; i < sim.size(); ++i)
                 if (const std::uint32_t body = sim.server(i).body_id()) client_of_body[body] = i;
             for (const world::body_input& applied : record.inputs) {
-                const auto it = client_of_body.find(applied.body_id);
+                const auto it = client_of_body.find(applied.body_id.value());
                 if (it == client_of_body.end()) continue;  // spawned this tick: no Welcome out yet
                 const world::player_input ruled = ledgers[it->second].consume();
                 ++inputs_applied;

@@ -138,7 +138,7 @@ TEST_CASE("bodies added and removed between steps: ids are never reused", "[worl
     REQUIRE(w.remove_body(b));
     const uint32_t c = add_ball(w, {30, 10}, {0, 0});
     CHECK(c == b + 1);
-    const uint32_t removed[] = {a, c};
+    const body_id removed[] = {body_id{a}, body_id{c}};
     w.remove_bodies(removed);
     w.step({});
     CHECK(add_ball(w, {40, 10}, {0, 0}) == c + 1);

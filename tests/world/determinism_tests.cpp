@@ -11,9 +11,9 @@ using namespace arena::world;
 namespace {
 
 // A fixed script of player inputs drawn from its own generator.
-tick_inputs scripted_inputs(rng& script, const std::vector<uint32_t>& players) {
+tick_inputs scripted_inputs(rng& script, const std::vector<body_id>& players) {
     tick_inputs inputs;
-    for (uint32_t id : players) {
+    for (const body_id id : players) {
         player_input in;
         in.thrust = script.uniform(-1, 1);
         in.turn = script.uniform(-1, 1);
@@ -25,8 +25,8 @@ tick_inputs scripted_inputs(rng& script, const std::vector<uint32_t>& players) {
 
 uint64_t run_scene(const world_config& config, uint64_t seed, int ticks) {
     world w(config, seed);
-    std::vector<uint32_t> players;
-    for (uint32_t p = 1; p <= 8; ++p) players.push_back(*w.spawn_player(p));
+    std::vector<body_id> players;
+    for (uint32_t p = 1; p <= 8; ++p) players.push_back(*w.spawn_player(player_id{p}));
     rng script(99);
     for (int k = 0; k < ticks; ++k) w.step(scripted_inputs(script, players));
     return w.hash();
@@ -37,10 +37,10 @@ uint64_t run_scene(const world_config& config, uint64_t seed, int ticks) {
 TEST_CASE("two worlds fed the same inputs have the same hash at every tick", "[world][determinism]") {
     for (const world_config& config : {asteroids_preset(), platformer_preset()}) {
         world a(config, 42), b(config, 42);
-        std::vector<uint32_t> players;
+        std::vector<body_id> players;
         for (uint32_t p = 1; p <= 6; ++p) {
-            players.push_back(*a.spawn_player(p));
-            REQUIRE(*b.spawn_player(p) == players.back());
+            players.push_back(*a.spawn_player(player_id{p}));
+            REQUIRE(*b.spawn_player(player_id{p}) == players.back());
         }
         rng script_a(5), script_b(5);
         for (int k = 0; k < 600; ++k) {
@@ -53,9 +53,9 @@ TEST_CASE("two worlds fed the same inputs have the same hash at every tick", "[w
 
 TEST_CASE("input order within a tick does not matter", "[world][determinism]") {
     world a(asteroids_preset(), 3), b(asteroids_preset(), 3);
-    const uint32_t p1 = *a.spawn_player(1), p2 = *a.spawn_player(2);
-    b.spawn_player(1);
-    b.spawn_player(2);
+    const body_id p1 = *a.spawn_player(player_id{1}), p2 = *a.spawn_player(player_id{2});
+    b.spawn_player(player_id{1});
+    b.spawn_player(player_id{2});
     for (int k = 0; k < 60; ++k) {
         a.step({{p1, {1, 0.5f, 0}}, {p2, {-1, 0, 1}}});
         b.step({{p2, {-1, 0, 1}}, {p1, {1, 0.5f, 0}}});

@@ -124,7 +124,7 @@ TEST_CASE("a player's thrust pushes along its facing and button 0 fires an impul
     c.control.impulse_cooldown_ticks = 5;
     c.player.mass = 2;
     world w(c, 7);
-    const uint32_t id = *w.spawn_player(1);
+    const body_id id = *w.spawn_player(player_id{1});
     w.step({{id, {1, 0, 0}}});
     CHECK(w.find(id)->velocity.x() == Approx(60.0 / 2 / 60));
     CHECK(w.find(id)->velocity.y() == 0.0f);

@@ -28,8 +28,8 @@ int64_t count_reading(void* context) {
 TEST_CASE("each phase of the step is lapped once per step, and timing changes no result", "[world][profile]") {
     for (const world_config& config : {asteroids_preset(), platformer_preset(), pyramid_preset(6)}) {
         world timed(config, 11), plain(config, 11);
-        const uint32_t a = *timed.spawn_player(1);
-        REQUIRE(*plain.spawn_player(1) == a);
+        const body_id a = *timed.spawn_player(player_id{1});
+        REQUIRE(*plain.spawn_player(player_id{1}) == a);
         counting_clock clock;
         timed.set_step_timer({count_reading, &clock});
         const int steps = 50;

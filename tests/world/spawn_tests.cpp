@@ -13,9 +13,9 @@ using namespace arena::world;
 
 namespace {
 
-std::vector<uint32_t> owners(uint32_t n) {
-    std::vector<uint32_t> o(n);
-    std::iota(o.begin(), o.end(), 1u);
+std::vector<player_id> owners(uint32_t n) {
+    std::vector<player_id> o;
+    for (uint32_t k = 1; k <= n; ++k) o.emplace_back(k);
     return o;
 }
 
@@ -28,7 +28,7 @@ world_config small(world_config c, boundary b) {
 
 uint64_t one_at_a_time(const world_config& c, uint32_t n) {
     world w(c, 7);
-    for (uint32_t owner : owners(n)) REQUIRE(w.spawn_player(owner));
+    for (const player_id owner : owners(n)) REQUIRE(w.spawn_player(owner));
     return w.hash();
 }
 
@@ -36,7 +36,7 @@ uint64_t in_one_batch(const world_config& c, uint32_t n) {
     world w(c, 7);
     const auto ids = w.spawn_players(owners(n));
     REQUIRE(ids.size() == n);
-    for (uint32_t id : ids) REQUIRE(id != 0);
+    for (const body_id id : ids) REQUIRE(id);
     return w.hash();
 }
 
@@ -72,7 +72,7 @@ TEST_CASE("spawn_players stops at max_bodies with 0 for the refused", "[world][s
     c.max_bodies = 45;  // 40 rocks, then 5 players
     world w(c, 1);
     const auto ids = w.spawn_players(owners(8));
-    CHECK(std::count(ids.begin(), ids.end(), 0u) == 3);
+    CHECK(std::count(ids.begin(), ids.end(), body_id{}) == 3);
     CHECK(w.bodies().size() == 45);
 }
 
@@ -81,8 +81,9 @@ TEST_CASE("remove_bodies leaves the world remove_body one at a time leaves", "[w
     a.spawn_players(owners(200));
     b.spawn_players(owners(200));
     // Unknown ids, repeats and any order, as a recorded tick's leaves may hold them.
-    const std::vector<uint32_t> leaves{45, 7, 45, 239, 100000, 41, 1, 200, 0};
-    for (uint32_t id : leaves) a.remove_body(id);
+    const std::vector<body_id> leaves{body_id{45}, body_id{7}, body_id{45},  body_id{239}, body_id{100000},
+                                      body_id{41}, body_id{1}, body_id{200}, body_id{0}};
+    for (const body_id id : leaves) a.remove_body(id.value());
     b.remove_bodies(leaves);
     CHECK(b.bodies().size() == 240 - 6);
     CHECK(a.hash() == b.hash());
