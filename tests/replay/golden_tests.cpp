@@ -3,6 +3,7 @@
 // purpose, regenerate it (server/replay/README.md) in the same commit and say why.
 #include <catch2/catch.hpp>
 
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -63,4 +64,38 @@ TEST_CASE("a world version 1 recording is refused with a message naming both ver
     INFO(opened.error);
     CHECK(opened.error.find("recorded with world version 1") != std::string::npos);
     CHECK(opened.error.find("this build simulates world version 2") != std::string::npos);
+}
+
+// A live Asteroids match under the game's rules, recorded by arena-server from six hunter bots
+// for 12 s: ships fire, rocks split, ships die and respawn. The rules' state is in every
+// recorded hash, so the replay reproduces the scores bit for bit; scripts/determinism-check.sh
+// replays it from every compiler and architecture too. Its scoreboard is the one the live
+// server wrote to --stats-json (names are not recorded).
+TEST_CASE("the golden Asteroids match replays to the live scoreboard with every hash matching", "[replay][golden]") {
+    auto opened = replayer::open(std::string(ARENA_TEST_DATA_DIR) + "/golden_asteroids_rules.arpl");
+    REQUIRE(opened.ok());
+    const replay_report report = opened.value->run();
+    INFO(report.error);
+    CHECK(report.error.empty());
+    CHECK_FALSE(report.mismatch.has_value());
+    CHECK(report.complete);
+    CHECK(report.final_tick == 719);
+    CHECK(report.hashes_checked == 13);
+    CHECK(report.final_hash == 0xa1d03817af7c96b3ULL);
+    struct expected_line {
+        uint32_t player, score, kills, deaths, shots, hits;
+    };
+    const expected_line live[] = {{1, 640, 0, 1, 14, 10}, {2, 790, 0, 0, 27, 11}, {3, 620, 0, 0, 14, 8},
+                                  {4, 390, 0, 1, 9, 7},   {5, 270, 0, 1, 9, 4},   {6, 840, 0, 0, 21, 12}};
+    const auto lines = opened.value->game_rules().scoreboard();
+    REQUIRE(lines.size() == std::size(live));
+    for (size_t i = 0; i < lines.size(); ++i) {
+        INFO("player " << live[i].player);
+        CHECK(lines[i].player == live[i].player);
+        CHECK(lines[i].score == live[i].score);
+        CHECK(lines[i].kills == live[i].kills);
+        CHECK(lines[i].deaths == live[i].deaths);
+        CHECK(lines[i].shots == live[i].shots);
+        CHECK(lines[i].hits == live[i].hits);
+    }
 }
