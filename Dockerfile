@@ -1,6 +1,6 @@
 # Arena game server image. The build stage runs exactly what CI runs (make deps build test);
 # the runtime stage holds only the programs and the one shared library they need beyond the C++
-# runtime (libsodium, for signed join tokens).
+# runtime (libsodium, for signed join tokens; libenet7, for the UDP transport).
 FROM debian:bookworm AS build
 RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends make \
@@ -11,14 +11,14 @@ RUN make deps build test
 
 FROM debian:bookworm-slim AS runtime
 RUN apt-get update \
- && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libsodium23 \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libsodium23 libenet7 \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --uid 10001 --no-create-home arena
 COPY --from=build /src/build/bin/arena-server /src/build/bin/arena-replay /src/build/bin/arena-sim \
      /src/build/bin/arena-token /src/build/bin/arena-healthcheck /usr/local/bin/
 USER arena
-# 7777: the game (TCP). 8080: /metrics and /healthz (HTTP), for Prometheus and the probes.
-EXPOSE 7777/tcp 8080/tcp
+# 7777: the game (TCP; UDP too when started with --udp-port 7777). 8080: /metrics and /healthz (HTTP), for Prometheus and the probes.
+EXPOSE 7777/tcp 7777/udp 8080/tcp
 STOPSIGNAL SIGTERM
 # /healthz answers 200 only while the tick loop advances, so a wedged server turns unhealthy
 # even though its sockets still accept. The probe is our own arena-healthcheck (the slim image

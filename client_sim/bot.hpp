@@ -12,13 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "client_sim/bot_session.hpp"
 #include "client_sim/client_core.hpp"
 
 namespace arena::bots {
 
 class fleet;
 
-class bot {
+class bot : public bot_session {
 public:
     bot(fleet& owner, client_params params);
     bot(const bot&) = delete;
@@ -26,20 +27,20 @@ public:
 
     // Connects, joins and plays until the session ends. Never throws: whatever goes wrong
     // ends this bot's session only, with a reason.
-    boost::asio::awaitable<void> run();
+    boost::asio::awaitable<void> run() override;
 
     // One server tick passed: this tick's input, and a Ping once a second.
-    void on_tick(std::uint64_t tick, time_ns now);
+    void on_tick(std::uint64_t tick, time_ns now) override;
     // The run is over: send Bye, close once it is written.
-    void finish();
+    void finish() override;
     // Ends the session now, with this reason.
-    void abort(const std::string& reason);
+    void abort(const std::string& reason) override;
     // Gives up when no Welcome came within the join timeout.
-    void check_join_timeout(time_ns now);
+    void check_join_timeout(time_ns now) override;
 
-    [[nodiscard]] bool ended() const { return core_.ended(); }
-    [[nodiscard]] const bot_outcome& outcome() const { return core_.outcome(); }
-    void add_final_figures(fleet_metrics& metrics) const { core_.add_final_figures(metrics); }
+    [[nodiscard]] bool ended() const override { return core_.ended(); }
+    [[nodiscard]] const bot_outcome& outcome() const override { return core_.outcome(); }
+    void add_final_figures(fleet_metrics& metrics) const override { core_.add_final_figures(metrics); }
 
 private:
     boost::asio::awaitable<void> reader();

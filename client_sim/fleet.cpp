@@ -8,6 +8,8 @@
 #include <csignal>
 #include <cstdio>
 
+#include "client_sim/udp_bot.hpp"
+
 namespace arena::bots {
 
 namespace {
@@ -46,7 +48,11 @@ fleet::fleet(boost::asio::io_context& io, options opts)
         params.token = token_for(opts_, params.name);
         params.delta_snapshots = !opts_.full_snapshots;
         params.join_timeout = static_cast<time_ns>(opts_.join_timeout * 1e9);
-        bots_.push_back(std::make_unique<bot>(*this, std::move(params)));
+        if (opts_.transport == transport_kind::udp)
+            bots_.push_back(std::make_unique<udp_bot>(
+                *this, std::move(params), simulated_delay{opts_.simulate_latency_ms, opts_.simulate_jitter_ms}));
+        else
+            bots_.push_back(std::make_unique<bot>(*this, std::move(params)));
     }
 }
 

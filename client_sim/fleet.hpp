@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "client_sim/bot.hpp"
+#include "client_sim/bot_session.hpp"
 #include "client_sim/client_shared.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/options.hpp"
@@ -60,7 +61,7 @@ private:
 
     boost::asio::io_context& io_;
     options opts_;
-    std::vector<std::unique_ptr<bot>> bots_;
+    std::vector<std::unique_ptr<bot_session>> bots_;  // TCP or UDP, as --transport says
     boost::asio::ip::tcp::endpoint endpoint_;
     boost::asio::steady_timer tick_timer_;
     boost::asio::steady_timer launch_timer_;

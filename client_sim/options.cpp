@@ -47,7 +47,25 @@ int parse_options(int argc, char** argv, options& out) {
     app.add_flag("--full-snapshots", out.full_snapshots,
                  "ask for full BodyState snapshots instead of deltas (no Hello.delta_snapshots)");
 
+    std::string transport_name = "tcp";
+    app.add_option("--transport", transport_name, "tcp, or udp (ENet; --port is then the server's --udp-port)")
+        ->check(CLI::IsMember({"tcp", "udp"}))
+        ->capture_default_str();
+    app.add_option("--simulate-latency", out.simulate_latency_ms,
+                   "ms added to every message each way on the bot's side (with --transport udp)")
+        ->check(CLI::Range(0.0, 10000.0));
+    app.add_option("--simulate-jitter", out.simulate_jitter_ms,
+                   "ms: each message's added delay varies by up to this either way (with --transport udp)")
+        ->check(CLI::Range(0.0, 10000.0));
+
     if (const int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    out.transport = transport_name == "udp" ? transport_kind::udp : transport_kind::tcp;
+    if (out.transport == transport_kind::tcp && (out.simulate_latency_ms > 0 || out.simulate_jitter_ms > 0)) {
+        std::fprintf(
+            stderr,
+            "arena-bots: --simulate-latency and --simulate-jitter delay datagrams: they need --transport udp\n");
+        return 2;
+    }
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
         if (auto* e = std::get_if<auth::token_error>(&secret)) {

@@ -10,6 +10,8 @@
 
 namespace arena::bots {
 
+enum class transport_kind : std::uint8_t { tcp, udp };
+
 struct options {
     std::string host = "127.0.0.1";
     std::uint16_t port = 7777;
@@ -26,9 +28,12 @@ struct options {
     // --token-secret FILE: each bot mints its own signed token naming it (load tests of a
     // server that runs with the same secret).
     std::optional<auth::token_secret> token_secret;
-    bool quiet = false;           // no progress lines
-    double join_timeout = 10;     // s from launch to Welcome before a bot gives up
-    bool full_snapshots = false;  // do not ask for delta snapshots (the simple client's path)
+    bool quiet = false;                              // no progress lines
+    double join_timeout = 10;                        // s from launch to Welcome before a bot gives up
+    bool full_snapshots = false;                     // do not ask for delta snapshots (the simple client's path)
+    transport_kind transport = transport_kind::tcp;  // udp: ENet, to a server's --udp-port
+    double simulate_latency_ms = 0;                  // udp: added each way on the bot's side
+    double simulate_jitter_ms = 0;                   // udp: ± uniform around it
 };
 
 // Parses argv into `out`. Returns -1 when the program should go on, else its exit code

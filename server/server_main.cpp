@@ -12,6 +12,7 @@
 #include "server/config/config_json.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
+#include "server/net/udp_transport.hpp"
 #include "server/ops/ops_flags.hpp"
 #include "server/ops/ops_service.hpp"
 #include "server/replay/recorder.hpp"
@@ -26,6 +27,10 @@ int main(int argc, char** argv) {
     double handshake_s = 5, stall_s = 5, idle_s = 5;
     app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
     app.add_option("--port", options.port, "TCP port (default 7777; 0 picks a free one)");
+    int udp_port = -1;  // off
+    app.add_option("--udp-port", udp_port,
+                   "also accept clients over UDP (ENet) on this port (default: off; 0 picks a free one)")
+        ->check(CLI::Range(0, 65535));
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
     app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
@@ -175,6 +180,11 @@ int main(int argc, char** argv) {
             io, ops_options, [&] { return server.metrics_snapshot(); }, [&] { return server.ticking(); },
             [](const std::string& line) { net::log_line("%s", line.c_str()); });
         server.start();
+        std::optional<net::udp_transport> udp;
+        if (udp_port >= 0) {
+            udp.emplace(io, server, net::udp_options{.port = static_cast<uint16_t>(udp_port)});
+            udp->start();  // prints "udp listening on HOST:PORT" after the TCP line
+        }
         ops.start_after_listening();  // binds --metrics-port, then POST /ready to Agones
         io.run();                     // until the server drained: Bye sent, recording and stats flushed
         io.restart();                 // the match is over: tell Agones (bounded), then exit 0

@@ -95,6 +95,23 @@ std::optional<unsigned> wait_for_listening(const child_process& server, std::chr
     return std::nullopt;
 }
 
+std::optional<unsigned> wait_for_port_line(const child_process& server, const std::string& prefix,
+                                           std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+        std::istringstream lines(server.output());
+        for (std::string line; std::getline(lines, line);) {
+            const size_t colon = line.rfind(':');
+            if (line.rfind(prefix + " ", 0) != 0 || colon == std::string::npos) continue;
+            const std::string port = line.substr(colon + 1);
+            if (!port.empty() && port.find_first_not_of("0123456789") == std::string::npos)
+                return static_cast<unsigned>(std::stoul(port));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return std::nullopt;
+}
+
 std::string read_file(const std::string& path) {
     std::ifstream in(path);
     std::stringstream s;

@@ -53,6 +53,11 @@ private:
 // Waits until the server printed "listening on HOST:PORT" and returns PORT, or nothing.
 std::optional<unsigned> wait_for_listening(const child_process& server, std::chrono::milliseconds timeout);
 
+// Waits until the output holds a line "PREFIX HOST:PORT" (e.g. "udp listening on") and
+// returns PORT, or nothing.
+std::optional<unsigned> wait_for_port_line(const child_process& server, const std::string& prefix,
+                                           std::chrono::milliseconds timeout);
+
 // Reads a whole file; empty when missing.
 std::string read_file(const std::string& path);
 

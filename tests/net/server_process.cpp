@@ -73,6 +73,26 @@ server_process::server_process(const std::vector<std::string>& args) {
     throw std::runtime_error("arena-server did not print 'listening on': " + log());
 }
 
+uint16_t server_process::port_line(const std::string& prefix, std::chrono::milliseconds timeout) {
+    std::string line;
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+        pollfd p{stdout_fd_, POLLIN, 0};
+        if (::poll(&p, 1, 100) <= 0) continue;
+        char c;
+        if (::read(stdout_fd_, &c, 1) != 1) return 0;
+        if (c != '\n') {
+            line += c;
+            continue;
+        }
+        const auto at = line.rfind(':');
+        if (line.rfind(prefix + " ", 0) == 0 && at != std::string::npos)
+            return static_cast<uint16_t>(std::stoi(line.substr(at + 1)));
+        line.clear();
+    }
+    return 0;
+}
+
 server_process::~server_process() {
     if (pid_ > 0) stop(SIGKILL);
     if (log_drain_.joinable()) log_drain_.join();  // ends at EOF: the server has exited

@@ -25,6 +25,9 @@ public:
     server_process& operator=(const server_process&) = delete;
 
     uint16_t port() const { return port_; }
+    // The port of the next stdout line "PREFIX HOST:PORT" (e.g. "udp listening on"), or 0
+    // when none comes within `timeout`.
+    uint16_t port_line(const std::string& prefix, std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
     pid_t pid() const { return pid_; }
     // Sends a signal and waits for the exit status (or -1 after `timeout`).
     int stop(int signal, std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));

@@ -1,0 +1,64 @@
+#pragma once
+// What the UDP transport checks in a raw datagram before ENet reads it. ENet has no handshake
+// cookie: a connect command takes a peer slot at once and is answered, so connect-shaped
+// datagrams are gated here, per source address, before ENet allocates anything.
+//
+// Plain C++ over bytes (no ENet, no sockets, no clock: the caller hands the time in), so it is
+// unit-tested and fuzzed without a network.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <unordered_map>
+
+#include "server/match/token_bucket.hpp"
+
+namespace arena::net {
+
+// The first bytes of an ENet 1.3 datagram, as far as the gate needs them.
+enum class datagram_kind : std::uint8_t {
+    too_short,   // shorter than ENet's header and one command header: ENet would drop it too
+    connect,     // addressed to no peer yet (peer id 0xFFF) with a CONNECT command first
+    not_a_peer,  // addressed to no peer yet, but no CONNECT first: ENet ignores it; so do we
+    peer,        // addressed to a peer slot: ENet checks the slot, its address and its session
+};
+
+// Reads only the fixed header (peer id, flags, optional sent time) and the first command's
+// number. `checksum`: the host adds a 4-byte checksum after the header (we do not).
+[[nodiscard]] datagram_kind classify_datagram(std::span<const std::uint8_t> datagram, bool checksum = false);
+
+// The bytes of an ENet CONNECT datagram without a checksum: 4 header bytes and the 48-byte
+// command. A shorter one is refused, so that the 48-byte VERIFY_CONNECT sent back is never
+// larger than what came in (no amplification from a spoofed source).
+inline constexpr std::size_t min_connect_datagram = 4 + 48;
+
+struct connect_gate_limits {
+    double connects_per_second = 4;  // per source address, after the burst
+    double burst = 16;
+    std::size_t max_addresses = 4096;  // remembered at once; beyond it the oldest half is forgotten
+};
+
+// Per-address connect rate. Each datagram that would create a peer takes one token of its
+// address's bucket; an address without tokens is ignored until they refill.
+class connect_gate {
+public:
+    explicit connect_gate(connect_gate_limits limits = {}) : limits_(limits) {}
+
+    // True: hand the datagram to ENet. `address`: the source without its port (a flood from
+    // many ports of one host shares one bucket).
+    [[nodiscard]] bool admit(std::span<const std::uint8_t> datagram, const std::string& address, int64_t now_ns);
+
+    std::uint64_t refused_rate() const { return refused_rate_; }
+    std::uint64_t refused_shape() const { return refused_shape_; }
+    std::size_t addresses() const { return buckets_.size(); }
+
+private:
+    void forget_oldest();
+
+    connect_gate_limits limits_;
+    std::unordered_map<std::string, match::token_bucket> buckets_;
+    std::uint64_t refused_rate_ = 0;   // connects over an address's rate
+    std::uint64_t refused_shape_ = 0;  // too short, or no connect though addressed to no peer
+};
+
+}  // namespace arena::net

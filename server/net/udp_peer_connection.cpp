@@ -1,0 +1,113 @@
+#include "server/net/udp_peer_connection.hpp"
+
+#include <arpa/inet.h>
+
+#include "protocol/verify.hpp"
+#include "server/net/udp_transport.hpp"
+
+namespace arena::net {
+
+namespace {
+
+std::string describe(const ENetAddress& address) {
+    char text[INET_ADDRSTRLEN] = {};
+    in_addr in{};
+    in.s_addr = address.host;  // ENet keeps the IPv4 address in network order
+    ::inet_ntop(AF_INET, &in, text, sizeof text);
+    return std::string(text) + ":" + std::to_string(address.port);
+}
+
+}  // namespace
+
+udp_peer_connection::udp_peer_connection(udp_transport& owner, ENetPeer* peer, uint64_t id)
+    : owner_(owner), peer_(peer), id_(id), peer_text_(describe(peer->address)) {}
+
+bool udp_peer_connection::receive(std::span<const uint8_t> datagram, int64_t arrival_ns) {
+    if (closing_) return false;
+    // One datagram, one frame: the same framing as TCP, so a frame that is too large is
+    // refused by its prefix, and the frame lands 8-byte aligned for the verifier.
+    const size_t used = reader_.feed(datagram);
+    if (reader_.failed()) {
+        owner_.match().reject(*this, match::admission::unreadable(reader_));
+        return false;
+    }
+    if (!reader_.has_frame() || used != datagram.size()) {
+        owner_.match().reject(*this,
+                              {protocol::RejectCode::bad_request,
+                               "a datagram of " + std::to_string(datagram.size()) + " bytes is not exactly one frame"});
+        return false;
+    }
+    auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
+    if (!verified) {
+        owner_.match().reject(*this, match::admission::unverified(verified.error));
+        return false;
+    }
+    owner_.count_message_in();
+    const bool go_on = owner_.match().receive(*this, *verified.value, arrival_ns);
+    reader_.next();
+    if (!go_on) close_after({});  // a Bye from the client; after a refusal this changes nothing
+    return go_on;
+}
+
+void udp_peer_connection::send_packet(std::span<const uint8_t> bytes, enet_uint8 channel, enet_uint32 flags) {
+    if (peer_ == nullptr || bytes.empty()) return;
+    ENetPacket* packet = enet_packet_create(bytes.data(), bytes.size(), flags);
+    if (packet == nullptr) return;
+    if (enet_peer_send(peer_, channel, packet) != 0) {
+        enet_packet_destroy(packet);  // not queued (the peer is not connected): still ours
+        return;
+    }
+    owner_.count_out(bytes.size());
+    owner_.flush_soon();
+}
+
+void udp_peer_connection::send(protocol::frame_bytes frame) {
+    if (closing_) return;
+    send_packet(frame, channel_reliable, ENET_PACKET_FLAG_RELIABLE);
+}
+
+void udp_peer_connection::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
+    if (closing_) return;
+    snapshot.copy_with_ack(ack_sequence, snapshot_);
+    send_snapshot_bytes(snapshot_);
+}
+
+void udp_peer_connection::send_snapshot_frame(std::span<const uint8_t> frame) {
+    if (closing_) return;
+    send_snapshot_bytes(frame);
+}
+
+void udp_peer_connection::send_snapshot_bytes(std::span<const uint8_t> bytes) {
+    // One datagram, unsequenced: a lost snapshot is replaced by the next one, never resent,
+    // and a late one is dropped by the client. A snapshot over the datagram budget (a full
+    // view of a crowded area) goes as unreliable fragments: it arrives whole or not at all,
+    // and the client keeps acking its older baseline until one does. It is counted, so an
+    // operator sees when views outgrow the budget (a per-client priority budget is the fix).
+    if (bytes.size() <= owner_.snapshot_budget()) {
+        send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNSEQUENCED);
+    } else {
+        owner_.count_fragmented_snapshot();
+        send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNRELIABLE_FRAGMENT);
+    }
+}
+
+void udp_peer_connection::close(protocol::RejectCode code, std::string_view reason) {
+    close_after(protocol::encode_reject(code, reason));
+}
+
+void udp_peer_connection::close_with_bye(std::string_view reason) {
+    close_after(protocol::encode_bye(reason));
+}
+
+void udp_peer_connection::close_after(const protocol::frame_bytes& last_frame) {
+    if (closing_) return;
+    send_packet(last_frame, channel_reliable, ENET_PACKET_FLAG_RELIABLE);
+    closing_ = true;
+    closing_since_ns_ = owner_.now_ns();
+    // ENet disconnects once everything queued is acknowledged; the transport resets the peer
+    // if that takes longer than the close grace.
+    if (peer_ != nullptr) enet_peer_disconnect_later(peer_, 0);
+    owner_.flush_now();  // at shutdown the io_context may stop before a posted flush
+}
+
+}  // namespace arena::net

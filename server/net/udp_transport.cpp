@@ -1,0 +1,199 @@
+#include "server/net/udp_transport.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "server/net/log.hpp"
+#include "server/net/server.hpp"
+
+namespace arena::net {
+
+namespace {
+
+// The transport whose host is being serviced: ENet's intercept callback has no user pointer.
+// One thread services one host at a time.
+thread_local udp_transport* servicing = nullptr;
+thread_local connect_gate* servicing_gate = nullptr;
+thread_local int64_t servicing_now_ns = 0;
+
+std::string address_text(const ENetAddress& address) {
+    char text[64] = {};
+    if (enet_address_get_host_ip(&address, text, sizeof text) != 0) return "?";
+    return text;
+}
+
+// Datagrams taken from the socket per wake-up before the tick gets the thread back.
+constexpr int max_events_per_service = 4096;
+
+}  // namespace
+
+udp_transport::udp_transport(boost::asio::io_context& io, server& owner, udp_options options)
+    : io_(io), owner_(owner), options_(options), readable_(io), timer_(io), gate_(options.gate) {
+    if (enet_initialize() != 0) throw std::runtime_error("udp: cannot initialise ENet");
+}
+
+udp_transport::~udp_transport() {
+    stopped_ = true;
+    boost::system::error_code ec;
+    readable_.close(ec);  // our duplicate of ENet's descriptor
+    timer_.cancel();
+    connections_.clear();
+    if (host_ != nullptr) {
+        enet_host_flush(host_);
+        enet_host_destroy(host_);
+    }
+    enet_deinitialize();
+}
+
+match::match& udp_transport::match() {
+    return owner_.match();
+}
+
+int64_t udp_transport::now_ns() const {
+    return owner_.now_ns();
+}
+
+void udp_transport::count_out(size_t bytes) {
+    owner_.count_out(bytes);
+}
+
+void udp_transport::count_message_in() {
+    owner_.count_message_in();
+}
+
+void udp_transport::start() {
+    ENetAddress address{};
+    const std::string& bind = owner_.options().bind;
+    if (enet_address_set_host_ip(&address, bind.c_str()) != 0)
+        throw std::runtime_error("--udp-port: ENet binds IPv4 only; cannot bind '" + bind + "'");
+    address.port = options_.port;
+    const uint32_t limit = options_.max_peers != 0 ? options_.max_peers : owner_.match().rules().connection_limit();
+    const size_t peers = std::clamp<size_t>(limit, 1, ENET_PROTOCOL_MAXIMUM_PEER_ID);
+    host_ = enet_host_create(&address, peers, udp_channel_count, 0, 0);
+    if (host_ == nullptr)
+        throw std::runtime_error("--udp-port: cannot bind UDP " + bind + ":" + std::to_string(options_.port));
+    host_->duplicatePeers = std::max<size_t>(1, options_.peers_per_address);
+    host_->intercept = &udp_transport::intercept;
+    port_ = host_->address.port;
+    const int fd = ::dup(host_->socket);
+    if (fd < 0) throw std::runtime_error("--udp-port: cannot watch the UDP socket");
+    readable_.assign(fd);
+    std::printf("udp listening on %s:%u\n", bind.c_str(), port_);
+    std::fflush(stdout);
+    log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram", bind.c_str(), port_, peers,
+             options_.snapshot_budget);
+    wait_readable();
+    arm_timer();
+}
+
+void udp_transport::wait_readable() {
+    readable_.async_wait(boost::asio::posix::stream_descriptor::wait_read, [this](const boost::system::error_code& ec) {
+        if (ec || stopped_) return;
+        service();
+        wait_readable();
+    });
+}
+
+void udp_transport::arm_timer() {
+    timer_.expires_after(std::chrono::nanoseconds(options_.service_interval_ns));
+    timer_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || stopped_) return;
+        service();
+        reap_closing();
+        arm_timer();
+    });
+}
+
+void udp_transport::flush_soon() {
+    if (flush_posted_) return;
+    flush_posted_ = true;
+    boost::asio::post(io_, [this] {
+        flush_posted_ = false;
+        if (!stopped_ && host_ != nullptr) enet_host_flush(host_);
+    });
+}
+
+void udp_transport::flush_now() {
+    if (!stopped_ && host_ != nullptr) enet_host_flush(host_);
+}
+
+void udp_transport::service() {
+    ENetEvent event{};
+    for (int i = 0; i < max_events_per_service; ++i) {
+        servicing = this;
+        servicing_gate = &gate_;
+        servicing_now_ns = now_ns();
+        const int got = enet_host_service(host_, &event, 0);
+        servicing = nullptr;
+        if (got <= 0) break;  // nothing more now (or a socket error, which ENet recovers from)
+        switch (event.type) {
+            case ENET_EVENT_TYPE_CONNECT:
+                on_connect(event.peer);
+                break;
+            case ENET_EVENT_TYPE_RECEIVE:
+                on_receive(event.peer, event.packet);
+                break;
+            case ENET_EVENT_TYPE_DISCONNECT:
+                on_disconnect(event.peer);
+                break;
+            case ENET_EVENT_TYPE_NONE:
+                break;
+        }
+    }
+}
+
+int ENET_CALLBACK udp_transport::intercept(ENetHost* host, ENetEvent*) {
+    if (servicing == nullptr || servicing_gate == nullptr) return 0;
+    const std::span<const uint8_t> datagram(host->receivedData, host->receivedDataLength);
+    return servicing_gate->admit(datagram, address_text(host->receivedAddress), servicing_now_ns) ? 0 : 1;
+}
+
+void udp_transport::on_connect(ENetPeer* peer) {
+    auto c = std::make_unique<udp_peer_connection>(*this, peer, next_id_++);
+    peer->data = c.get();
+    // A peer that stops answering is gone after 3 to 10 s (ENet's default is up to 30 s).
+    enet_peer_timeout(peer, 0, 3000, 10000);
+    udp_peer_connection& ref = *c;
+    connections_.emplace(c->id(), std::move(c));
+    match().connect(ref);  // refused: it is closing, its Reject queued
+}
+
+void udp_transport::on_receive(ENetPeer* peer, ENetPacket* packet) {
+    auto* c = static_cast<udp_peer_connection*>(peer->data);
+    owner_.count_in(packet->dataLength);
+    if (c != nullptr && !c->closing()) c->receive(std::span<const uint8_t>(packet->data, packet->dataLength), now_ns());
+    enet_packet_destroy(packet);
+}
+
+void udp_transport::on_disconnect(ENetPeer* peer) {
+    auto* c = static_cast<udp_peer_connection*>(peer->data);
+    peer->data = nullptr;
+    if (c == nullptr) return;  // never connected
+    c->forget_peer();
+    if (!c->closing())
+        match().disconnect(*c, {match::close_cause::kind::connection_closed, {}, "the ENet peer disconnected"});
+    connections_.erase(c->id());
+}
+
+void udp_transport::reap_closing() {
+    // A closing peer that does not acknowledge its last word within the close grace is reset.
+    const int64_t now = now_ns();
+    const int64_t grace = owner_.options().close_grace_ns;
+    for (auto it = connections_.begin(); it != connections_.end();) {
+        udp_peer_connection& c = *it->second;
+        if (c.closing() && now - c.closing_since_ns() > grace) {
+            if (ENetPeer* peer = c.enet_peer()) {
+                peer->data = nullptr;
+                enet_peer_reset(peer);
+            }
+            it = connections_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+}  // namespace arena::net

@@ -1,0 +1,84 @@
+#pragma once
+// The UDP transport: ENet peers feeding the same match as TCP, on the same io_context thread.
+// ENet's socket is watched by Asio (a readable wait on a duplicate of its descriptor); each
+// wake-up services ENet without blocking, and a short timer lets ENet resend and time out.
+// Before ENet reads a datagram, the connect gate (udp_connect_gate.hpp) refuses connects over
+// an address's rate and connect datagrams too small to be answered without amplification.
+#include <enet/enet.h>
+
+#include <boost/asio.hpp>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "server/match/match.hpp"
+#include "server/net/udp_connect_gate.hpp"
+#include "server/net/udp_peer_connection.hpp"
+
+namespace arena::net {
+
+class server;
+
+struct udp_options {
+    uint16_t port = 0;       // 0: any free port
+    uint32_t max_peers = 0;  // ENet peer slots; 0: the match's connection limit (at most 4095)
+    uint32_t peers_per_address = 64;
+    size_t snapshot_budget = 1200;  // bytes: a snapshot larger than this is sent fragmented
+    connect_gate_limits gate{};
+    int64_t service_interval_ns = 10'000'000;  // ENet's resends and timeouts
+};
+
+class udp_transport {
+public:
+    udp_transport(boost::asio::io_context& io, server& owner, udp_options options);
+    ~udp_transport();
+    udp_transport(const udp_transport&) = delete;
+    udp_transport& operator=(const udp_transport&) = delete;
+
+    // Binds the server's --bind address and prints "udp listening on HOST:PORT". Throws when
+    // ENet cannot bind.
+    void start();
+    uint16_t port() const { return port_; }
+
+    // For the peer connections.
+    match::match& match();
+    int64_t now_ns() const;
+    void count_out(size_t bytes);
+    void count_message_in();
+    void count_fragmented_snapshot() { ++fragmented_snapshots_; }
+    size_t snapshot_budget() const { return options_.snapshot_budget; }
+    // Sends what ENet queued once the current handler returns (one flush for a tick's fan-out).
+    void flush_soon();
+    void flush_now();
+
+    size_t peers() const { return connections_.size(); }
+    const connect_gate& gate() const { return gate_; }
+    uint64_t fragmented_snapshots() const { return fragmented_snapshots_; }
+
+private:
+    void wait_readable();
+    void arm_timer();
+    void service();
+    void on_connect(ENetPeer* peer);
+    void on_receive(ENetPeer* peer, ENetPacket* packet);
+    void on_disconnect(ENetPeer* peer);
+    void reap_closing();
+    static int ENET_CALLBACK intercept(ENetHost* host, ENetEvent* event);
+
+    boost::asio::io_context& io_;
+    server& owner_;
+    udp_options options_;
+    ENetHost* host_ = nullptr;
+    uint16_t port_ = 0;
+    boost::asio::posix::stream_descriptor readable_;
+    boost::asio::steady_timer timer_;
+    connect_gate gate_;
+    std::map<uint64_t, std::unique_ptr<udp_peer_connection>> connections_;  // by id, in connect order
+    uint64_t next_id_ = 1;
+    bool flush_posted_ = false;
+    bool stopped_ = false;
+    uint64_t fragmented_snapshots_ = 0;
+};
+
+}  // namespace arena::net

@@ -1,0 +1,125 @@
+// arena-bots --transport udp against arena-server --udp-port, as real processes on loopback:
+// UDP and TCP players in the same match, and the bots' simulated latency.
+#include <signal.h>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
+
+namespace {
+
+using arena::test::child_process;
+using arena::test::temp_dir;
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+const std::string bin_dir = ARENA_BIN_DIR;
+
+struct udp_server {
+    child_process process;
+    unsigned tcp_port = 0;
+    unsigned udp_port = 0;
+
+    explicit udp_server(const temp_dir& dir)
+        : process(bin_dir + "/arena-server",
+                  {"--bind", "127.0.0.1", "--port", "0", "--udp-port", "0", "--preset", "asteroids", "--seed", "1",
+                   "--duration", "30"},
+                  dir.file("server.log")) {
+        const auto t = arena::test::wait_for_listening(process, 5s);
+        const auto u = arena::test::wait_for_port_line(process, "udp listening on", 5s);
+        if (!t || !u) FAIL("arena-server did not print both listening lines: " << process.output());
+        tcp_port = *t;
+        udp_port = *u;
+    }
+    ~udp_server() {
+        process.signal(SIGTERM);
+        process.wait_for(3s);
+    }
+};
+
+// Starts arena-bots; the report is read once it exited.
+struct bots {
+    std::string report_file;
+    child_process process;
+    bots(const temp_dir& dir, const std::string& name, unsigned port, std::vector<std::string> args)
+        : report_file(dir.file(name + ".json")),
+          process(
+              bin_dir + "/arena-bots",
+              [&] {
+                  args.insert(args.end(), {"--host", "127.0.0.1", "--port", std::to_string(port), "--json", report_file,
+                                           "--quiet", "--name-prefix", name});
+                  return args;
+              }(),
+              dir.file(name + ".log")) {}
+    json finish() {
+        const auto code = process.wait_for(30s);
+        INFO(process.output());
+        REQUIRE(code.has_value());
+        CHECK(*code == 0);
+        const std::string text = arena::test::read_file(report_file);
+        REQUIRE(!text.empty());
+        return json::parse(text);
+    }
+};
+
+double figure(const json& report, const std::string& name, const std::string& stat) {
+    return report.at("figures").at(name).at(stat).get<double>();
+}
+
+void check_everyone_played(const json& j, int n) {
+    CHECK(j.at("joined") == n);
+    CHECK(j.at("failed") == 0);
+    CHECK(j.at("ended_early") == 0);
+    CHECK(j.at("disconnects").empty());
+    CHECK(figure(j, "snapshots_per_s_per_bot", "min") >= 18.0);
+    CHECK(figure(j, "snapshots_per_s_per_bot", "p50") == Approx(20.0).margin(0.5));
+    // Inputs were consumed: every snapshot's ack names an input the world applied.
+    CHECK(figure(j, "input_lag_ticks", "count") > 100);
+}
+
+}  // namespace
+
+TEST_CASE("UDP bots and TCP bots play in the same match at the snapshot rate", "[e2e][udp]") {
+    temp_dir dir;
+    udp_server s(dir);
+    bots udp(dir, "udp", s.udp_port, {"--transport", "udp", "--bots", "12", "--duration", "4", "--seed", "3"});
+    bots tcp(dir, "tcp", s.tcp_port, {"--bots", "4", "--duration", "4", "--seed", "4"});
+    const json u = udp.finish();
+    const json t = tcp.finish();
+    check_everyone_played(u, 12);
+    check_everyone_played(t, 4);
+    // Loopback without loss: an input is consumed at the next tick or the one after.
+    CHECK(figure(u, "input_lag_ticks", "p99") <= 3);
+    CHECK(figure(u, "rtt_ms", "p50") < 20.0);
+    // Both kinds of players were in one world: the server logged joins from both prefixes.
+    const std::string log = s.process.output();
+    CHECK(log.find("name=udp-0") != std::string::npos);
+    CHECK(log.find("name=tcp-0") != std::string::npos);
+}
+
+TEST_CASE("UDP bots' simulated latency shows in their round trip and input lag", "[e2e][udp]") {
+    temp_dir dir;
+    udp_server s(dir);
+    bots udp(
+        dir, "late", s.udp_port,
+        {"--transport", "udp", "--bots", "4", "--duration", "3", "--simulate-latency", "40", "--simulate-jitter", "5"});
+    const json j = udp.finish();
+    check_everyone_played(j, 4);
+    // 40 ms each way ± 5: a round trip of 75 to 85 ms, plus loopback and the server's turn.
+    CHECK(figure(j, "rtt_ms", "p50") >= 75.0);
+    CHECK(figure(j, "rtt_ms", "p50") < 130.0);
+    // 40 ms is 2.4 ticks at 60 Hz before the input arrives.
+    CHECK(figure(j, "input_lag_ticks", "p50") >= 2);
+}
+
+TEST_CASE("arena-bots refuses a simulated latency over TCP: it delays datagrams", "[e2e][udp]") {
+    temp_dir dir;
+    child_process p(bin_dir + "/arena-bots", {"--simulate-latency", "10", "--duration", "1"}, dir.file("bots.log"));
+    const auto code = p.wait_for(10s);
+    REQUIRE(code.has_value());
+    CHECK(*code == 2);
+    CHECK(p.output().find("need --transport udp") != std::string::npos);
+}

@@ -1,0 +1,196 @@
+// arena-server's UDP transport (--udp-port, ENet) end to end over loopback: joining, inputs
+// and snapshots, the same admission as TCP, and hostile datagrams.
+#include <signal.h>
+
+#include <catch2/catch.hpp>
+#include <functional>
+#include <random>
+#include <thread>
+
+#include "protocol/decode.hpp"
+#include "protocol/version.hpp"
+#include "server_process.hpp"
+#include "udp_client.hpp"
+
+using namespace arena;
+using namespace arena::test;
+using namespace std::chrono_literals;
+using protocol::Payload;
+
+namespace {
+
+struct udp_server {
+    server_process process;
+    uint16_t udp_port = 0;
+    explicit udp_server(std::vector<std::string> args)
+        : process([&] {
+              args.insert(args.end(), {"--udp-port", "0"});
+              return args;
+          }()) {
+        udp_port = process.port_line("udp listening on");
+        REQUIRE(udp_port != 0);
+    }
+};
+
+// Hello on the reliable channel, then the Welcome.
+void join(udp_client& c, const std::string& name = "udp-tester") {
+    REQUIRE(c.connected());
+    c.send_reliable(protocol::encode_hello(protocol::protocol_version, name, ""));
+    auto welcome = c.read_until(Payload::Welcome, 3000ms);
+    REQUIRE(welcome);
+    REQUIRE(protocol::decode_welcome(*message_of(*welcome)));
+}
+
+protocol::reject_msg expect_reject(udp_client& c) {
+    auto frame = c.read_until(Payload::Reject, 4000ms);
+    REQUIRE(frame);
+    auto r = protocol::decode_reject(*message_of(*frame));
+    REQUIRE(r);
+    return r.value;
+}
+
+struct play_figures {
+    int snapshots = 0;
+    uint32_t max_ack = 0;
+    uint32_t sent = 0;
+};
+
+// Sends one input per tick (60 Hz) unreliably and counts the snapshots and their acks.
+play_figures play(udp_client& c, std::chrono::milliseconds duration, uint32_t first_sequence = 1,
+                  const std::function<void()>& between = {}) {
+    play_figures f;
+    const auto start = std::chrono::steady_clock::now();
+    uint32_t sequence = first_sequence;
+    while (std::chrono::steady_clock::now() - start < duration) {
+        c.send_unreliable(protocol::encode_input({sequence++, 1.0f, 0.0f, 0}));
+        ++f.sent;
+        if (between) between();
+        const auto next = start + f.sent * 16667us;
+        while (std::chrono::steady_clock::now() < next) {
+            auto frame = c.read_frame(2ms);
+            if (!frame) continue;
+            const protocol::Message* m = message_of(*frame);
+            if (m == nullptr || m->payload_type() != Payload::Snapshot) continue;
+            auto s = protocol::decode_snapshot(*m);
+            REQUIRE(s);
+            ++f.snapshots;
+            f.max_ack = std::max(f.max_ack, s.value.ack_sequence);
+        }
+    }
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("a client joins over UDP beside TCP, its inputs are consumed and snapshots arrive", "[net][udp]") {
+    udp_server server({"--preset", "asteroids"});
+    CHECK(server.udp_port != server.process.port());
+    udp_client c(server.udp_port);
+    join(c);
+    const play_figures f = play(c, 1500ms);
+    // 20 snapshots a second for 1.5 s over loopback: allow for the start and a loaded machine.
+    CHECK(f.snapshots >= 20);
+    // The world consumed the inputs: the ack follows the newest sequence sent, a few ticks behind.
+    CHECK(f.max_ack + 20 >= f.sent);
+    CHECK(f.max_ack > 0);
+    CHECK(server.process.log_shows("udp: ENet on"));
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
+TEST_CASE("a UDP datagram whose length prefix is too large is refused like those bytes on TCP", "[net][udp]") {
+    udp_server server({});
+    udp_client c(server.udp_port);
+    REQUIRE(c.connected());
+    const std::vector<uint8_t> garbage = {'h', 'e', 'l', 'l', 'o', ' ', 'w', 'o', 'r', 'l', 'd'};
+    c.send_reliable(garbage);
+    CHECK(expect_reject(c).code == protocol::RejectCode::too_large);
+    c.pump(500ms);
+    CHECK(c.disconnected());
+}
+
+TEST_CASE("a UDP datagram holding a frame and more is refused: one datagram, one frame", "[net][udp]") {
+    udp_server server({});
+    udp_client c(server.udp_port);
+    REQUIRE(c.connected());
+    protocol::frame_bytes frame = protocol::encode_hello(protocol::protocol_version, "two", "");
+    frame.push_back(0);
+    c.send_reliable(frame);
+    const protocol::reject_msg r = expect_reject(c);
+    CHECK(r.code == protocol::RejectCode::bad_request);
+    CHECK(r.reason.find("not exactly one frame") != std::string::npos);
+    c.pump(500ms);
+    CHECK(c.disconnected());
+}
+
+TEST_CASE("a UDP Hello with the wrong protocol version gets the same Reject as on TCP", "[net][udp]") {
+    udp_server server({});
+    udp_client c(server.udp_port);
+    REQUIRE(c.connected());
+    c.send_reliable(protocol::encode_hello(protocol::protocol_version + 1, "old", ""));
+    CHECK(expect_reject(c).code == protocol::RejectCode::version_mismatch);
+}
+
+TEST_CASE("a UDP peer that connects and never says Hello is dropped after the handshake timeout", "[net][udp]") {
+    udp_server server({"--handshake-timeout", "1"});
+    udp_client c(server.udp_port);
+    REQUIRE(c.connected());
+    CHECK(expect_reject(c).code == protocol::RejectCode::timeout);
+    c.pump(1000ms);
+    CHECK(c.disconnected());
+}
+
+TEST_CASE("random datagrams, truncated ENet headers and a connect flood leave an honest UDP client its snapshots",
+          "[net][udp][hostile]") {
+    udp_server server({"--preset", "asteroids"});
+    udp_client honest(server.udp_port);
+    join(honest);
+    const play_figures calm = play(honest, 1000ms);
+    REQUIRE(calm.snapshots >= 12);
+
+    std::mt19937 rng(7);
+    std::vector<std::unique_ptr<ENetHost, void (*)(ENetHost*)>> flood;
+    ENetAddress to{};
+    enet_address_set_host_ip(&to, "127.0.0.1");
+    to.port = server.udp_port;
+    int round = 0;
+    // Each tick: 20 random datagrams, 20 truncated headers, and 2 ENet connects from new ports.
+    auto attack = [&] {
+        for (int i = 0; i < 20; ++i) {
+            std::vector<uint8_t> bytes(rng() % 1400);
+            for (auto& b : bytes) b = static_cast<uint8_t>(rng());
+            send_raw_datagram(server.udp_port, bytes);
+            std::vector<uint8_t> header(1 + rng() % 7);
+            for (auto& b : header) b = static_cast<uint8_t>(rng());
+            header[0] = 0x8F;  // a connect's peer id 0xFFF with the sent-time flag
+            if (header.size() > 1) header[1] = 0xFF;
+            send_raw_datagram(server.udp_port, header);
+        }
+        for (int i = 0; i < 2; ++i) {
+            ENetHost* h = enet_host_create(nullptr, 1, 2, 0, 0);
+            if (h == nullptr) continue;
+            enet_host_connect(h, &to, 2, 0);
+            enet_host_flush(h);
+            flood.emplace_back(h, &enet_host_destroy);
+        }
+        ++round;
+    };
+    const play_figures stormy = play(honest, 2000ms, calm.sent + 1, attack);
+    // The honest client keeps its snapshot rate (20 a second; allow a loaded machine a quarter)
+    // and its inputs keep being consumed.
+    CHECK(stormy.snapshots >= 30);
+    CHECK(stormy.max_ack + 30 >= calm.sent + stormy.sent);
+
+    // The flood's connects were gated per address: of ~240 only the burst and the refill got
+    // a peer slot (16 + 4 a second over ~2 s, with slack for timing).
+    int connected = 0;
+    for (auto& h : flood) {
+        ENetEvent event{};
+        while (enet_host_service(h.get(), &event, 0) > 0)
+            if (event.type == ENET_EVENT_TYPE_CONNECT) ++connected;
+    }
+    INFO("flood hosts " << flood.size() << ", connected " << connected << ", rounds " << round);
+    CHECK(flood.size() >= 100);
+    CHECK(connected >= 1);
+    CHECK(connected <= 40);
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
