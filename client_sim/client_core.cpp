@@ -286,7 +286,16 @@ void client_core::send_input(const world::player_input& input) {
     // so that sequences stay consecutive.
     predictor_->on_input(sequence, input);
     const std::uint32_t snapshot_ack = deltas_ ? deltas_->ack() : 0;
-    append_input(shared_.encoder(), {sequence, input.thrust, input.turn, input.buttons, snapshot_ack}, pending_);
+    protocol::input_msg message{sequence, input.thrust, input.turn, input.buttons, snapshot_ack, {}};
+    if (params_.unordered) {
+        // On datagrams each Input repeats the inputs the server has not acknowledged yet (the
+        // newest few): a lost one costs nothing once the next arrives.
+        for (const protocol::earlier_input& e : recent_inputs_)
+            if (e.sequence > last_ack_) message.earlier.push_back(e);
+        if (recent_inputs_.size() == protocol::max_earlier_inputs) recent_inputs_.pop_front();
+        recent_inputs_.push_back({sequence, input.thrust, input.turn, input.buttons});
+    }
+    append_input(shared_.encoder(), message, pending_);
     ++shared_.metrics().inputs_sent;
     if (pending_.size() > max_pending_bytes) end(end_kind::transport_error, "server stopped reading our inputs");
 }

@@ -11,6 +11,7 @@
 // After every call the owner looks at output() (frames to send, in order), closing() (close
 // once the output is written, then call flushed()) and ended() (close now).
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <span>
 #include <string>
@@ -152,6 +153,7 @@ private:
     std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
     std::uint32_t last_ack_ = 0;
     std::uint32_t last_snapshot_tick_ = 0;
+    std::deque<protocol::earlier_input> recent_inputs_;  // datagrams: repeated in the next Inputs
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

@@ -12,9 +12,7 @@ void append_finished(const flatbuffers::FlatBufferBuilder& fbb, std::vector<std:
 
 void append_input(flatbuffers::FlatBufferBuilder& fbb, const protocol::input_msg& in, std::vector<std::uint8_t>& out) {
     fbb.Clear();  // keeps its block
-    protocol::finish_message(
-        fbb, protocol::Payload::Input,
-        protocol::CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack).Union());
+    protocol::finish_message(fbb, protocol::Payload::Input, protocol::create_input(fbb, in).Union());
     append_finished(fbb, out);
 }
 

@@ -66,10 +66,20 @@ frame_bytes encode_reject(RejectCode code, std::string_view reason) {
 }
 
 frame_bytes encode_input(const input_msg& in) {
-    flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
-    finish_message(fbb, Payload::Input,
-                   CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack).Union());
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + in.earlier.size() * sizeof(EarlierInput));
+    finish_message(fbb, Payload::Input, create_input(fbb, in).Union());
     return to_frame(fbb);
+}
+
+flatbuffers::Offset<Input> create_input(flatbuffers::FlatBufferBuilder& fbb, const input_msg& in) {
+    flatbuffers::Offset<flatbuffers::Vector<const EarlierInput*>> earlier = 0;
+    if (!in.earlier.empty()) {
+        std::vector<EarlierInput> structs;
+        structs.reserve(in.earlier.size());
+        for (const earlier_input& e : in.earlier) structs.emplace_back(e.sequence, e.thrust, e.turn, e.buttons);
+        earlier = fbb.CreateVectorOfStructs(structs);
+    }
+    return CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack, earlier);
 }
 
 frame_bytes encode_ping(std::uint64_t client_time) {

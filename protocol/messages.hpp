@@ -44,12 +44,24 @@ struct reject_msg {
     bool operator==(const reject_msg&) const = default;
 };
 
+// An earlier input repeated in a later Input (Input.earlier): see protocol/README.md.
+struct earlier_input {
+    std::uint32_t sequence = 0;
+    float thrust = 0.0f;
+    float turn = 0.0f;
+    std::uint8_t buttons = 0;
+    bool operator==(const earlier_input&) const = default;
+};
+// The most earlier inputs one Input may carry.
+inline constexpr std::size_t max_earlier_inputs = 8;
+
 struct input_msg {
     std::uint32_t sequence = 0;
-    float thrust = 0.0f;             // [-1, 1]
-    float turn = 0.0f;               // [-1, 1]
-    std::uint8_t buttons = 0;        // bit 0 = impulse/jump
-    std::uint32_t snapshot_ack = 0;  // newest delta snapshot tick decoded; 0 = none
+    float thrust = 0.0f;                   // [-1, 1]
+    float turn = 0.0f;                     // [-1, 1]
+    std::uint8_t buttons = 0;              // bit 0 = impulse/jump
+    std::uint32_t snapshot_ack = 0;        // newest delta snapshot tick decoded; 0 = none
+    std::vector<earlier_input> earlier{};  // oldest first, each sequence below `sequence`
     bool operator==(const input_msg&) const = default;
 };
 
@@ -77,6 +89,8 @@ inline constexpr std::uint8_t button_impulse = 1u << 0;
 [[nodiscard]] frame_bytes encode_welcome(const welcome_info& welcome);
 [[nodiscard]] frame_bytes encode_reject(RejectCode code, std::string_view reason);
 [[nodiscard]] frame_bytes encode_input(const input_msg& input);
+// The Input table of `input` in a builder (encode_input, and a client's reused builder).
+flatbuffers::Offset<Input> create_input(flatbuffers::FlatBufferBuilder& fbb, const input_msg& input);
 [[nodiscard]] frame_bytes encode_ping(std::uint64_t client_time);
 [[nodiscard]] frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick);
 [[nodiscard]] frame_bytes encode_bye(std::string_view reason);

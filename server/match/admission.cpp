@@ -121,10 +121,21 @@ std::variant<admitted_input, rejection> admission::admit_input(client_standing& 
         return rejection{RejectCode::rate_limit, "more than " + std::to_string(input_limit()) + " inputs per second"};
     const world::player_input in{input.thrust, input.turn, input.buttons};
     if (auto problem = world::check_input(in)) return rejection{RejectCode::bad_input, *problem};
+    for (const protocol::earlier_input& e : input.earlier)
+        if (auto problem = world::check_input({e.thrust, e.turn, e.buttons}))
+            return rejection{RejectCode::bad_input, "earlier input " + std::to_string(e.sequence) + ": " + *problem};
     client.last_input_tick = tick;
-    if (input.sequence <= client.last_sequence) return admitted_input{true, {}};
+    if (input.sequence <= client.last_sequence) return admitted_input{true, {}, {}};
+    // Decoding checked that the earlier sequences rise and stay below this one: those not taken
+    // yet are taken now, in order, each once.
+    admitted_input out{false, in, {}};
+    for (const protocol::earlier_input& e : input.earlier) {
+        if (e.sequence <= client.last_sequence) continue;
+        out.recovered.push_back({e.sequence, {e.thrust, e.turn, e.buttons}});
+        client.last_sequence = e.sequence;
+    }
     client.last_sequence = input.sequence;
-    return admitted_input{false, in};
+    return out;
 }
 
 std::optional<rejection> admission::admit_ping(client_standing& client, int64_t arrival_ns) const {

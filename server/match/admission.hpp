@@ -16,10 +16,12 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "protocol/decode.hpp"
 #include "protocol/framing.hpp"
 #include "server/match/close_cause.hpp"
+#include "server/match/input_buffer.hpp"
 #include "server/match/token_bucket.hpp"
 #include "server/world/input.hpp"
 
@@ -94,6 +96,9 @@ enum class join_kind : uint8_t {
 struct admitted_input {
     bool stale = false;  // sequence not above the last taken: ignored, not refused
     world::player_input input{};
+    // Earlier inputs (Input.earlier) newer than the last taken, oldest first: each goes to the
+    // buffer before `input`, so a lost datagram's input arrives with the next one.
+    std::vector<sequenced_input> recovered;
 };
 
 class admission {

@@ -222,6 +222,8 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
     }
     player& p = it->second;
     p.snapshots.acked_tick = input.snapshot_ack;
+    for (const sequenced_input& earlier : in.recovered) p.inputs.push(earlier);
+    counters_.inputs_recovered += in.recovered.size();
     p.inputs.push({input.sequence, in.input});
     return true;
 }

@@ -57,8 +57,9 @@ struct match_counters {
     uint64_t input_underruns = 0;
     uint64_t input_overflows = 0;
     uint64_t inputs_received = 0;
-    uint64_t stale_inputs = 0;    // sequence not above the last received: ignored
-    uint64_t snapshot_bytes = 0;  // the last snapshot frame built, bytes
+    uint64_t stale_inputs = 0;      // sequence not above the last received: ignored
+    uint64_t inputs_recovered = 0;  // taken from a later Input's `earlier`: its own datagram was lost or late
+    uint64_t snapshot_bytes = 0;    // the last snapshot frame built, bytes
     uint64_t reconnects = 0;
     uint64_t takeovers = 0;
     uint32_t players_peak = 0;

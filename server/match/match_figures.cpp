@@ -38,6 +38,9 @@ void report(const match_counters& c, figure_sink& out) {
                 c.input_overflows);
     out.counter({"stale_inputs", "arena_stale_inputs_total", "Inputs ignored: not newer than the last received."},
                 c.stale_inputs);
+    out.counter({"inputs_recovered", "arena_inputs_recovered_total",
+                 "Inputs taken from a later Input's earlier list: their own message was lost or late."},
+                c.inputs_recovered);
     out.counter({"snapshots_sent", "arena_snapshots_sent_total", "Snapshots sent, one per client per broadcast."},
                 c.snapshots_sent);
     out.gauge({"", "arena_snapshot_size_bytes", "Size of the last snapshot frame built."}, c.snapshot_bytes);

@@ -22,7 +22,7 @@ void datagram_link::send(std::span<const std::uint8_t> message, sim_time now) {
     const sim_time extra = dice_.upto(conditions_.reorder_delay);
     const bool twice = dice_.chance(conditions_.duplicate);
     const sim_time copy_arrives = now + dice_.delay(conditions_) + dice_.upto(conditions_.latency);
-    if (lost) {
+    if (lost || blocked(now)) {
         ++stats_.lost;
         return;
     }
@@ -40,7 +40,13 @@ void datagram_link::send(std::span<const std::uint8_t> message, sim_time now) {
 void datagram_link::send_reliable(std::span<const std::uint8_t> message, sim_time now) {
     ++stats_.sent;
     stats_.sent_bytes += message.size();
-    const sim_time sent_at = dice_.resent_until_through(conditions_, now, stats_);
+    sim_time sent_at = dice_.resent_until_through(conditions_, now, stats_);
+    for (sim_time timeout = conditions_.retransmit_timeout; blocked(sent_at);
+         timeout = std::min(2 * timeout, conditions_.max_retransmit_timeout)) {
+        ++stats_.lost;
+        ++stats_.retransmissions;
+        sent_at += timeout;
+    }
     // In order among the reliable messages: one that arrives early waits for those before it.
     last_reliable_ = std::max(sent_at + dice_.delay(conditions_), last_reliable_);
     put(message, last_reliable_);

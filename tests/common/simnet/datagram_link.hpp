@@ -31,6 +31,13 @@ public:
     // in the order sent). False when none has.
     bool receive(sim_time now, std::vector<std::uint8_t>& out);
 
+    // Every transmission sent in [from, until) is lost: a reliable message gets through with
+    // the first resend after it. For a test of a client cut off for a while.
+    void block(sim_time from, sim_time until) {
+        block_from_ = from;
+        block_until_ = until;
+    }
+
     [[nodiscard]] const link_stats& stats() const { return stats_; }
     [[nodiscard]] std::size_t in_flight() const { return flight_.size(); }
 
@@ -52,6 +59,9 @@ private:
     std::vector<in_flight_message> flight_;  // a heap: front() arrives first
     std::uint64_t next_order_ = 0;
     sim_time last_reliable_ = 0;  // when the last reliable message arrives
+    sim_time block_from_ = 0;
+    sim_time block_until_ = 0;
+    [[nodiscard]] bool blocked(sim_time now) const { return now >= block_from_ && now < block_until_; }
     link_stats stats_;
 };
 

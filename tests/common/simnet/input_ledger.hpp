@@ -21,6 +21,20 @@ public:
             ++stale_;
             return;
         }
+        // Earlier inputs repeated in it (Input.earlier) that were not received yet come first,
+        // in order.
+        for (const protocol::earlier_input& e : in.earlier) {
+            if (e.sequence <= last_received_) continue;
+            take({e.sequence, e.thrust, e.turn, e.buttons, in.snapshot_ack, {}});
+            ++recovered_;
+        }
+        take(in);
+    }
+
+    [[nodiscard]] std::uint64_t recovered() const { return recovered_; }
+
+private:
+    void take(const protocol::input_msg& in) {
         last_received_ = in.sequence;
         ++accepted_;
         if (waiting_.size() >= capacity_) {
@@ -30,6 +44,7 @@ public:
         waiting_.push_back(in);
     }
 
+public:
     // This tick's input, as the match must have applied it.
     world::player_input consume() {
         if (waiting_.empty()) {
@@ -66,6 +81,7 @@ private:
     std::uint64_t overflows_ = 0;
     std::uint64_t underruns_ = 0;
     std::uint64_t stale_ = 0;
+    std::uint64_t recovered_ = 0;
 };
 
 }  // namespace arena::simnet

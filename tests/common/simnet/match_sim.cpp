@@ -62,6 +62,11 @@ server_end& match_sim::server(std::size_t i) {
 const path& match_sim::up(std::size_t i) const {
     return clients_[i]->up;
 }
+void match_sim::cut_off(std::size_t i, sim_time duration) {
+    clients_[i]->up.block(now_, now_ + duration);
+    clients_[i]->down.block(now_, now_ + duration);
+}
+
 const path& match_sim::down(std::size_t i) const {
     return clients_[i]->down;
 }

@@ -54,6 +54,8 @@ public:
     [[nodiscard]] server_end& server(std::size_t i);
     [[nodiscard]] const path& up(std::size_t i) const;
     [[nodiscard]] const path& down(std::size_t i) const;
+    // Datagrams: client i loses everything it sends and is sent from now for `duration`.
+    void cut_off(std::size_t i, sim_time duration);
     [[nodiscard]] bots::client_shared& shared() { return shared_; }
 
 private:

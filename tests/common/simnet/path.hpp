@@ -34,6 +34,10 @@ public:
     void deliver(sim_time now, Data&& data, End&& end);
 
     [[nodiscard]] const link_stats& stats() const;
+    // Datagrams only: see datagram_link::block.
+    void block(sim_time from, sim_time until) {
+        if (auto* d = std::get_if<datagram_link>(&link_)) d->block(from, until);
+    }
 
 private:
     link_kind kind_;
