@@ -25,7 +25,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libfla
 # packages), so these are installed only when there is no `npm` command.
 NPM_PACKAGES := nodejs npm
 
-.PHONY: all deps build run test test-fast bench bench-deps bench-e2e clean fuzz lint-docker format format-check
+.PHONY: all deps build run test test-fast bench bench-deps bench-e2e bench-loss clean fuzz lint-docker format format-check
 
 all: build
 
@@ -109,7 +109,7 @@ lint-docker:
 
 # Box2D 2.4.1, the peer the world step is compared with, is only for the benchmarks (the Colyseus peer needs node and
 # npm, which the machine image has; bench/e2e.sh skips it with a note without them).
-BENCH_PACKAGES := libbox2d-dev
+BENCH_PACKAGES := libbox2d-dev nftables iproute2
 bench-deps:
 	@$(MAKE) --no-print-directory deps PACKAGES="$(BENCH_PACKAGES)"
 
@@ -119,6 +119,10 @@ bench: build bench-deps
 # End to end: the server and the bots pinned to one core each, and the Colyseus peer.
 bench-e2e: build bench-deps
 	./bench/e2e.sh $(BUILD)/bin
+
+# TCP and UDP under packet loss (nftables in a network namespace: root) and added latency.
+bench-loss: build bench-deps
+	./bench/loss.sh $(BUILD)/bin
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-* build-aarch64-*
