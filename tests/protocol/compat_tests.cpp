@@ -16,6 +16,8 @@ namespace {
 
 // What an old client did with a frame: the FlatBuffers Verifier with the limits verify.hpp
 // has always applied (depth 4, 4 tables), then the size-prefixed root.
+// The result points into `frame`: a temporary would be gone before the caller reads it.
+const old::Message* old_read(std::vector<std::uint8_t>&& frame) = delete;
 const old::Message* old_read(const std::vector<std::uint8_t>& frame) {
     flatbuffers::Verifier::Options options;
     options.max_depth = 4;
@@ -88,7 +90,9 @@ TEST_CASE("An old client reads snapshots carrying shapes: full, shared with its 
     flatbuffers::FlatBufferBuilder fbb;
 
     const auto full = ap::encode_snapshot(fbb, 12, 5, bodies, &shapes);
-    const old::Snapshot* s = old_read({full.begin(), full.end()})->payload_as_Snapshot();
+    // Each frame is kept in a named vector: what old_read returns points into it.
+    const std::vector<std::uint8_t> full_frame(full.begin(), full.end());
+    const old::Snapshot* s = old_read(full_frame)->payload_as_Snapshot();
     REQUIRE(s != nullptr);
     CHECK(s->tick() == 12);
     CHECK(s->ack_sequence() == 5);
@@ -102,7 +106,8 @@ TEST_CASE("An old client reads snapshots carrying shapes: full, shared with its 
 
     ap::snapshot_encoder shared;
     shared.build(13, bodies, &shapes);
-    const old::Snapshot* patched = old_read(shared.frame_with_ack(41))->payload_as_Snapshot();
+    const std::vector<std::uint8_t> patched_frame = shared.frame_with_ack(41);
+    const old::Snapshot* patched = old_read(patched_frame)->payload_as_Snapshot();
     REQUIRE(patched != nullptr);
     CHECK(patched->tick() == 13);
     CHECK(patched->ack_sequence() == 41);
@@ -110,7 +115,8 @@ TEST_CASE("An old client reads snapshots carrying shapes: full, shared with its 
 
     const std::vector<std::uint8_t> codec{9, 8, 7, 6};
     const auto delta = ap::encode_delta_snapshot(fbb, 14, 6, 11, codec, &shapes);
-    const old::Snapshot* d = old_read({delta.begin(), delta.end()})->payload_as_Snapshot();
+    const std::vector<std::uint8_t> delta_frame(delta.begin(), delta.end());
+    const old::Snapshot* d = old_read(delta_frame)->payload_as_Snapshot();
     REQUIRE(d != nullptr);
     CHECK(d->baseline_tick() == 11);
     REQUIRE(d->delta() != nullptr);
