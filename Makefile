@@ -49,13 +49,18 @@ build: deps $(BUILD)/build.ninja
 run: build
 	./scripts/run-demo.sh $(BUILD)/bin
 
+# The two tests that use up every file descriptor of a process on purpose run in the Release
+# stage only: UBSan's vptr check probes memory through a pipe, so with no descriptor left it
+# reports a false "invalid vptr" and ends the process.
+SANITIZER_EXCLUDED_TESTS := ^(out of descriptors the accept loop|ops http: out of file descriptors)
+
 # Release tests, then the same tests under AddressSanitizer + UBSan, then the cross-compiler
 # determinism check. The Dockerfile is linted first: no Docker engine runs here to build it.
 test: build format-check lint-docker
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600 -E '$(SANITIZER_EXCLUDED_TESTS)'
 	./scripts/determinism-check.sh $(BUILD)
 	$(MAKE) fuzz
 
