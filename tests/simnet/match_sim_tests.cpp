@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "server/world/presets.hpp"
+#include "simnet/checked_run.hpp"
 #include "simnet/input_ledger.hpp"
 #include "simnet/match_sim.hpp"
 
@@ -37,48 +38,6 @@ conditions internet() {
     c.loss = 0.05;
     return c;
 }
-
-// A run whose every Input handed to the match, every input the world applied and every
-// snapshot's ack are checked against the rule (input_ledger) as they happen.
-struct checked_run {
-    match_sim sim;
-    std::vector<input_ledger> ledgers;
-    std::map<std::uint32_t, std::size_t> client_of_body;
-    std::uint64_t inputs_applied = 0;
-    std::uint64_t inputs_not_as_ruled = 0;  // the world applied another input than the rule says
-    std::uint64_t acks_checked = 0;
-    std::uint64_t acks_not_as_ruled = 0;      // a snapshot acknowledged another input than the last consumed
-    std::uint64_t arrivals_out_of_order = 0;  // on a stream: an Input that is not the next one
-
-    checked_run(const match::match_config& config, const sim_options& options)
-        : sim(config, *world::preset_by_name("asteroids"), options) {
-        ledgers.assign(sim.size(), input_ledger(config.input_buffer));
-        const bool stream = options.kind == link_kind::stream;
-        for (std::size_t i = 0; i < sim.size(); ++i) {
-            sim.server(i).on_input = [this, i, stream](const protocol::input_msg& in) {
-                if (stream && in.sequence != ledgers[i].last_received() + 1) ++arrivals_out_of_order;
-                ledgers[i].received(in);
-            };
-            sim.server(i).on_snapshot_ack = [this, i](std::uint32_t ack) {
-                ++acks_checked;
-                if (ack != ledgers[i].consumed_sequence()) ++acks_not_as_ruled;
-            };
-        }
-        sim.match().on_tick = [this](const match::tick_record& record, std::uint64_t) {
-            for (std::size_t i = 0; i < sim.size(); ++i)
-                if (const std::uint32_t body = sim.server(i).body_id()) client_of_body[body] = i;
-            for (const world::body_input& applied : record.inputs) {
-                const auto it = client_of_body.find(applied.body_id.value());
-                if (it == client_of_body.end()) continue;  // spawned this tick: no Welcome out yet
-                const world::player_input ruled = ledgers[it->second].consume();
-                ++inputs_applied;
-                if (ruled.thrust != applied.input.thrust || ruled.turn != applied.input.turn ||
-                    ruled.buttons != applied.input.buttons)
-                    ++inputs_not_as_ruled;
-            }
-        };
-    }
-};
 
 void check_run(checked_run& run, link_kind kind, std::uint64_t ticks) {
     match_sim& sim = run.sim;

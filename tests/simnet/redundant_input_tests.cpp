@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "server/world/presets.hpp"
+#include "simnet/checked_run.hpp"
 #include "simnet/input_ledger.hpp"
 #include "simnet/match_sim.hpp"
 
@@ -26,61 +27,6 @@ match::match_config match_config(std::uint32_t players) {
     c.preset = "asteroids";
     return c;
 }
-
-// Every Input handed to the match goes to the client's ledger; each tick the world's applied
-// input is compared with the ledger's, and the sequences the ledger consumed are kept.
-struct ledgered_run {
-    match_sim sim;
-    std::vector<input_ledger> ledgers;
-    std::vector<std::vector<std::uint32_t>> consumed;  // per client: the sequence consumed at each tick
-    std::map<std::uint32_t, std::size_t> client_of_body;
-    std::uint64_t inputs_not_as_ruled = 0;
-    std::uint64_t acks_not_as_ruled = 0;
-    std::uint64_t acks_checked = 0;
-
-    ledgered_run(const match::match_config& config, const sim_options& options)
-        : sim(config, *world::preset_by_name("asteroids"), options) {
-        ledgers.assign(sim.size(), input_ledger(config.input_buffer));
-        consumed.resize(sim.size());
-        for (std::size_t i = 0; i < sim.size(); ++i) {
-            sim.server(i).on_input = [this, i](const protocol::input_msg& in) {
-                ledgers[i].received(in);
-            };
-            sim.server(i).on_snapshot_ack = [this, i](std::uint32_t ack) {
-                ++acks_checked;
-                if (ack != ledgers[i].consumed_sequence()) ++acks_not_as_ruled;
-            };
-        }
-        sim.match().on_tick = [this](const match::tick_record& record, std::uint64_t) {
-            for (std::size_t i = 0; i < sim.size(); ++i)
-                if (const std::uint32_t body = sim.server(i).body_id()) client_of_body[body] = i;
-            for (const world::body_input& applied : record.inputs) {
-                const auto it = client_of_body.find(applied.body_id.value());
-                if (it == client_of_body.end()) continue;
-                const world::player_input ruled = ledgers[it->second].consume();
-                consumed[it->second].push_back(ledgers[it->second].consumed_sequence());
-                if (ruled.thrust != applied.input.thrust || ruled.turn != applied.input.turn ||
-                    ruled.buttons != applied.input.buttons)
-                    ++inputs_not_as_ruled;
-            }
-        };
-    }
-
-    // Sequences that were never consumed between the first and the last consumed one: each
-    // is an input the world never applied (lost, overtaken, or dropped by a full buffer); the
-    // largest number when one was consumed after a newer one.
-    std::uint64_t gaps(std::size_t i) const {
-        std::uint64_t missing = 0;
-        std::uint32_t last = 0;
-        for (const std::uint32_t s : consumed[i]) {
-            if (s == last) continue;  // the same input again: an underrun repeats it, not consumed twice
-            if (s < last) return std::numeric_limits<std::uint64_t>::max();  // an older one after a newer one
-            if (last != 0) missing += s - last - 1;
-            last = s;
-        }
-        return missing;
-    }
-};
 
 conditions lossy() {
     conditions c;
@@ -102,7 +48,7 @@ TEST_CASE("with redundant inputs over lossy, reordering datagrams every input is
     o.down = lossy();
     o.seed = 19;
     o.clients = 16;
-    ledgered_run run(match_config(16), o);
+    checked_run run(match_config(16), o);
     run.sim.run_ticks(1800);  // 30 s of play
 
     for (std::size_t i = 0; i < run.sim.size(); ++i) {
@@ -141,7 +87,7 @@ TEST_CASE("a UDP client whose every packet is lost for 2 s plays on without reco
     o.up.jitter = o.down.jitter = 5 * ms;
     o.seed = 7;
     o.clients = 4;
-    ledgered_run run(match_config(4), o);
+    checked_run run(match_config(4), o);
     run.sim.run_ticks(300);
     REQUIRE(run.sim.client(0).current() == phase::playing);
     const std::uint32_t player = run.sim.client(0).player_id();
