@@ -198,6 +198,17 @@ void asteroids_rules::after_step(world::world& w) {
     const auto points = [this](uint32_t size) {
         return size >= 3 ? params_.score_large : size == 2 ? params_.score_medium : params_.score_small;
     };
+    // A bullet that hit `target`: its shooter scores and counts a hit, and both are used up.
+    const auto bullet_hits = [&](uint32_t bullet, uint32_t target, uint32_t score) -> score_line& {
+        score_line& shooter = players_[bullets_[bullet].owner].score;
+        shooter.score += score;
+        ++shooter.hits;
+        bullets_.erase(bullet);
+        removals.push_back(bullet);
+        consumed.push_back(bullet);
+        consumed.push_back(target);
+        return shooter;
+    };
     for (const world::contact_event& e : w.contact_events()) {
         if (used(e.a) || used(e.b)) continue;
         uint32_t bullet = 0, rock = 0, ship = 0;
@@ -210,26 +221,11 @@ void asteroids_rules::after_step(world::world& w) {
                 ship = id;
         }
         if (bullet && rock) {
-            const uint32_t owner = bullets_[bullet].owner;
-            player& shooter = players_[owner];
-            shooter.score.score += points(rocks_[rock]);
-            ++shooter.score.hits;
-            bullets_.erase(bullet);
-            removals.push_back(bullet);
-            consumed.push_back(bullet);
-            consumed.push_back(rock);
+            bullet_hits(bullet, rock, points(rocks_[rock]));
             split_rock(w, rock, removals);
         } else if (bullet && ship) {
-            const uint32_t owner = bullets_[bullet].owner;
             const uint32_t victim = w.find(ship)->owner;
-            player& shooter = players_[owner];
-            shooter.score.score += params_.score_ship;
-            ++shooter.score.hits;
-            ++shooter.score.kills;
-            bullets_.erase(bullet);
-            removals.push_back(bullet);
-            consumed.push_back(bullet);
-            consumed.push_back(ship);
+            ++bullet_hits(bullet, ship, params_.score_ship).kills;
             destroy_ship(w, victim, removals);
         } else if (rock && ship) {
             consumed.push_back(ship);
