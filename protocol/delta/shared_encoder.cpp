@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <optional>
+#include <utility>
 
 #include "protocol/delta/bits.hpp"
 #include "protocol/delta/records.hpp"
@@ -142,6 +144,13 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
     }
     while (j < current.size()) added_indices_.push_back(current[j++]);
 
+    const view state = state_;
+    write(baseline,
+          checksum_of(current.size(), [&](std::size_t i) -> const quantized_body& { return state[current[i]]; }), out);
+}
+
+void shared_encoder::write(std::span<const std::uint32_t> baseline, std::uint32_t checksum,
+                           std::vector<std::uint8_t>& out) {
     // This view's gap and id-gap orders (only these two classes: zeroing all ten classes'
     // counts was a visible share of a client's encoding).
     width_counts gaps{}, id_gaps{};
@@ -161,9 +170,7 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
     w.put(f::version, f::version_bits);
     w.put(base_ ? 1 : 0, 1);
     if (base_) w.put_golomb(baseline.size(), 0);
-    const view state = state_;
-    w.put(checksum_of(current.size(), [&](std::size_t i) -> const quantized_body& { return state[current[i]]; }),
-          f::checksum_bits);
+    w.put(checksum, f::checksum_bits);
     for (unsigned c = 0; c < f::class_count; ++c) w.put_golomb(order[c], 0);
     if (base_) {
         w.put_golomb(touches_.size(), 0);
@@ -171,6 +178,8 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
             sink.code(f::gap, t.gap);
             if (t.removed) {
                 emit_removed(sink);
+            } else if (t.own_change != none) {
+                emit_change(sink, own_changes_[t.own_change].change, own_changes_[t.own_change].owner);
             } else {
                 const record& r = change_record(t.base_index);
                 put_record(w, pool_, r.word, r.bits);
@@ -186,6 +195,108 @@ void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<co
         put_record(w, pool_, r.word, r.bits);
     }
     w.flush();
+}
+
+namespace {
+
+// What the decoder makes of an untouched baseline body: `from` as predicted, velocities
+// unchanged (decode.cpp, body_reader::touched with mask 0); nullopt when that leaves the
+// position's range, which the decoder refuses.
+std::optional<quantized_body> predicted(const quantized_body& from, elapsed_time e) {
+    const std::int64_t x = from.x + f::predict_displacement(from.vx, from.vx, e);
+    const std::int64_t y = from.y + f::predict_displacement(from.vy, from.vy, e);
+    if (!std::in_range<std::int32_t>(x) || !std::in_range<std::int32_t>(y)) return std::nullopt;
+    quantized_body out = from;
+    out.x = static_cast<std::int32_t>(x);
+    out.y = static_cast<std::int32_t>(y);
+    out.angle = f::wrap_angle(from.angle + f::predict_rotation(from.angular_velocity, from.angular_velocity, e));
+    return out;
+}
+
+}  // namespace
+
+void shared_encoder::encode_chosen(std::span<const std::uint32_t> current, std::span<const std::uint8_t> chosen,
+                                   std::span<const std::uint32_t> baseline, std::span<const held_body> baseline_held,
+                                   std::vector<std::uint32_t>& sent, std::vector<held_body>& held,
+                                   std::vector<std::uint8_t>& out) {
+    assert(chosen.size() == current.size());
+    touches_.clear();
+    added_indices_.clear();
+    own_changes_.clear();
+    held.clear();
+    kept_.assign(current.size(), 0);
+    std::size_t j = 0;
+    if (base_) {
+        std::uint64_t gap = 0;
+        std::size_t h = 0;
+        for (const std::uint32_t b : baseline) {
+            const std::uint32_t s = base_to_state_[b];
+            if (s != none) {
+                for (; j < current.size() && current[j] < s; ++j) {
+                    if (chosen[j]) added_indices_.push_back(current[j]);
+                }
+            }
+            while (h < baseline_held.size() && baseline_held[h].index < b) ++h;
+            const quantized_body* holds =
+                h < baseline_held.size() && baseline_held[h].index == b ? &baseline_held[h].state : nullptr;
+            if (s == none || j == current.size() || current[j] != s) {
+                touches_.push_back({gap, b, true});  // gone from the world, or from the view
+                gap = 0;
+                continue;
+            }
+            const std::size_t k = j++;
+            const quantized_body& from = holds != nullptr ? *holds : (*base_)[b];
+            if (!chosen[k]) {
+                // Left out: the client keeps it, as predicted from what it holds.
+                const std::optional<quantized_body> kept = predicted(from, elapsed_);
+                if (!kept) {
+                    touches_.push_back({gap, b, true});
+                    gap = 0;
+                    continue;
+                }
+                kept_[k] = 1;
+                held.push_back({s, *kept});
+                ++gap;
+                continue;
+            }
+            if (holds == nullptr) {
+                if (unchanged_[b]) {
+                    ++gap;
+                } else {
+                    touches_.push_back({gap, b, false});
+                    gap = 0;
+                }
+                continue;
+            }
+            // Refreshed after being left out: its change from the state the client holds.
+            const records::body_change d = diff(from, state_[s], elapsed_);
+            if (d.unchanged()) {
+                ++gap;
+                continue;
+            }
+            touches_.push_back({gap, b, false, static_cast<std::uint32_t>(own_changes_.size())});
+            own_changes_.push_back({d, state_[s].owner});
+            gap = 0;
+        }
+    }
+    for (; j < current.size(); ++j) {
+        if (chosen[j]) added_indices_.push_back(current[j]);
+    }
+
+    // The client's view after this snapshot: the chosen bodies at this state, the kept ones
+    // at what it holds (held, in the same increasing order).
+    sent.clear();
+    for (std::size_t k = 0; k < current.size(); ++k) {
+        if (chosen[k] || kept_[k]) sent.push_back(current[k]);
+    }
+    const view state = state_;
+    std::size_t h = 0;
+    const std::uint32_t checksum = checksum_of(sent.size(), [&](std::size_t i) -> const quantized_body& {
+        const std::uint32_t s = sent[i];
+        while (h < held.size() && held[h].index < s) ++h;
+        return h < held.size() && held[h].index == s ? held[h].state : state[s];
+    });
+    write(baseline, checksum, out);
 }
 
 }  // namespace arena::protocol::delta

@@ -17,6 +17,7 @@
 
 #include "protocol/delta/codec.hpp"
 #include "protocol/delta/format.hpp"
+#include "protocol/delta/records.hpp"
 
 namespace arena::protocol::delta {
 
@@ -32,6 +33,26 @@ public:
     // the client holds. Writes the encoding to out (cleared first; its capacity is reused).
     void encode(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
                 std::vector<std::uint8_t>& out);
+
+    // A body a client holds at another state than the shared state of its tick: it was left
+    // out of a snapshot, and the decoder kept it as predicted (an untouched baseline body).
+    struct held_body {
+        std::uint32_t index = 0;  // into the state of the view it belongs to
+        quantized_body state;     // what the client holds
+    };
+
+    // One client's snapshot holding only part of its view (a bandwidth budget chose which
+    // bodies): `current` is the whole view, `chosen[k]` says whether current[k] goes in. A
+    // body of the client's baseline view that stays in `current` but is not chosen is kept by
+    // the client as predicted (written as unchanged: it is not a removal); a body new to the
+    // client that is not chosen is not added yet. `baseline_held`: the baseline view's bodies
+    // the client holds at other states (increasing baseline indices, each in `baseline`).
+    // Writes the encoding to out, the client's resulting view (increasing state indices) to
+    // `sent`, and those of its bodies it holds at other states than this one's to `held`.
+    // A kept body whose prediction would leave the codec's range is removed instead.
+    void encode_chosen(std::span<const std::uint32_t> current, std::span<const std::uint8_t> chosen,
+                       std::span<const std::uint32_t> baseline, std::span<const held_body> baseline_held,
+                       std::vector<std::uint32_t>& sent, std::vector<held_body>& held, std::vector<std::uint8_t>& out);
 
     [[nodiscard]] bool has_baseline() const noexcept { return base_.has_value(); }
 
@@ -51,7 +72,11 @@ private:
         std::uint64_t gap = 0;
         std::uint32_t base_index = 0;
         bool removed = false;
+        std::uint32_t own_change = none;  // encode_chosen: index into own_changes_ (a held body's)
     };
+    // Writes the header, the touched and the added sections from touches_ and added_indices_;
+    // `checksum` is that of the client's resulting view.
+    void write(std::span<const std::uint32_t> baseline, std::uint32_t checksum, std::vector<std::uint8_t>& out);
 
     view state_;
     std::optional<view> base_;
@@ -65,6 +90,12 @@ private:
     // One client's walk, reused.
     std::vector<touch> touches_;
     std::vector<std::uint32_t> added_indices_;
+    struct own_change {
+        records::body_change change;
+        std::uint32_t owner = 0;
+    };
+    std::vector<own_change> own_changes_;  // encode_chosen: changes against a held state
+    std::vector<std::uint8_t> kept_;       // encode_chosen: by position in current, kept as held
 };
 
 }  // namespace arena::protocol::delta

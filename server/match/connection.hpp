@@ -3,6 +3,7 @@
 // to it, replace its pending snapshot, close it with a last word, and name its peer. The match
 // never touches a socket, so it is tested (and fuzzed, and simulated) without one. A
 // transport (server/match/) implements this once per kind of link.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -27,6 +28,10 @@ public:
     // Sends Bye(reason) as the last word, then closes (another connection took this player
     // over, the server shuts down).
     virtual void close_with_bye(std::string_view reason) = 0;
+    // Bytes a snapshot frame to this client may take (delta clients; a larger view is trimmed
+    // by priority, snapshot_fanout.hpp); 0: no limit. A datagram transport sets its datagram
+    // budget; a stream has none.
+    virtual size_t snapshot_budget() const { return 0; }
     // The peer's address as the logs show it ("127.0.0.1:52814"; "" when unknown).
     virtual std::string_view peer() const = 0;
     // The peer's address without its port ("127.0.0.1", "::1"): handshake slots are shared

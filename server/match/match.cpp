@@ -159,7 +159,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
                                     0,
                                     {},
                                     input_buffer(config_.input_buffer),
-                                    snapshot_client(baseline_ring(), hello.delta_snapshots)});
+                                    snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget())});
         pending_joins_.push_back(id);
     } else {
         // The same player again: a reconnection, or a new connection taking over.
@@ -176,7 +176,8 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
             ++counters_.reconnects;
         }
         p.inputs = input_buffer(config_.input_buffer);
-        p.snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots);  // holds no baseline yet
+        p.snapshots =
+            snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget());  // holds no baseline yet
         if (p.body_id) pending_welcomes_.push_back(id);
         log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
     }

@@ -53,6 +53,10 @@ void report(const match_counters& c, figure_sink& out) {
     out.counter({"snapshots/delta_bodies", "", ""}, s.delta_bodies);
     out.counter({"snapshots/shapes_sent", "", ""}, s.shapes_sent);
     out.counter({"snapshots/shape_bytes", "", ""}, s.shape_bytes);
+    out.counter({"snapshots/trimmed_frames", "arena_snapshots_trimmed_total",
+                 "Delta snapshots that held only part of their view, to fit their client's byte budget."},
+                s.trimmed_frames);
+    out.counter({"snapshots/left_out_bodies", "", ""}, s.left_out_bodies);
     out.gauge({"snapshots/delta_bytes_per_body", "", ""},
               s.delta_bodies == 0 ? 0.0 : static_cast<double>(s.delta_bytes) / static_cast<double>(s.delta_bodies));
 }

@@ -126,10 +126,11 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, w
         held = client.views.at(acked);
         if (held != nullptr) baseline_tick = acked;
     }
-    encoder_for(baseline_tick)
-        .encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(), delta_bytes_);
     // Shapes are confirmed by any acknowledged snapshot this client was sent, a baseline or not.
     const uint32_t sent_ack = acked != 0 && acked < tick_ && client.views.at(acked) != nullptr ? acked : 0;
+    if (client.budget != 0) return budgeted_frame(client, own, ack_sequence, baseline_tick, held, sent_ack);
+    encoder_for(baseline_tick)
+        .encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(), delta_bytes_);
     describe_view(client, sent_ack, false);
     client.views.record(tick_, view_);
 

@@ -11,6 +11,10 @@
 // bodies spawned since the previous shared frame, so it serves exactly the clients that got
 // that one; any other BodyState client gets a frame of its own.
 //
+// A delta client with a byte budget (UDP: one datagram, snapshot_budget.cpp) gets a frame
+// within it: when its view does not fit, a priority accumulator picks the bodies that go in,
+// and the client keeps the others as predicted.
+//
 // Delta clients are spread over the ticks between two snapshots (match.cpp), so the fan-out
 // runs every tick for a share of them: each piece of per-tick work (quantising, indexing, the
 // shared frame) is done on first use in that tick.
@@ -23,6 +27,7 @@
 #include "protocol/snapshot.hpp"
 #include "server/match/body_kinds.hpp"
 #include "server/match/shape_tracker.hpp"
+#include "server/match/snapshot_priority.hpp"
 #include "server/match/view_history.hpp"
 #include "server/world/view_index.hpp"
 #include "server/world/world.hpp"
@@ -37,12 +42,15 @@ struct fanout_config {
 
 // What the fan-out keeps per client.
 struct snapshot_client {
-    explicit snapshot_client(tick_ring ring, bool delta) : delta(delta), views(ring) {}
-    bool delta = false;        // the client decodes delta snapshots
-    uint32_t acked_tick = 0;   // its newest Input.snapshot_ack; 0: none
-    client_views views;        // what its recent snapshots held
-    shape_tracker shapes;      // which shapes it holds
-    uint32_t shared_tick = 0;  // BodyState clients of a whole-world view: the tick of its last frame
+    explicit snapshot_client(tick_ring ring, bool delta, size_t budget = 0)
+        : delta(delta), budget(budget), views(ring) {}
+    bool delta = false;               // the client decodes delta snapshots
+    size_t budget = 0;                // delta clients: bytes a snapshot frame may take; 0: no limit
+    uint32_t acked_tick = 0;          // its newest Input.snapshot_ack; 0: none
+    client_views views;               // what its recent snapshots held
+    shape_tracker shapes;             // which shapes it holds
+    uint32_t shared_tick = 0;         // BodyState clients of a whole-world view: the tick of its last frame
+    priority_accumulator priorities;  // with a budget: which bodies go in next
 };
 
 struct fanout_counters {
@@ -54,6 +62,8 @@ struct fanout_counters {
     uint64_t full_frames = 0;          // BodyState frames sent (clients without delta_snapshots)
     uint64_t shapes_sent = 0;          // body shapes described, summed over the clients that got them
     uint64_t shape_bytes = 0;          // their BodyShape and ShapeVertex bytes, summed the same way
+    uint64_t trimmed_frames = 0;       // delta frames that held part of their view (over the client's budget)
+    uint64_t left_out_bodies = 0;      // bodies of their views those frames left out, summed
 };
 
 class snapshot_fanout {
@@ -91,6 +101,10 @@ private:
     void describe_view(snapshot_client& client, uint32_t acked, bool reliable);
     void count_shapes(const protocol::shape_list& list);
     void build_shared();  // this tick's shared frame, once
+    // delta_frame() for a client with a budget (snapshot_budget.cpp).
+    std::span<const uint8_t> budgeted_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
+                                            uint32_t baseline_tick, const std::vector<uint32_t>* held,
+                                            uint32_t sent_ack);
 
     fanout_config config_;
     const world::world* world_ = nullptr;
@@ -118,6 +132,11 @@ private:
     uint32_t shared_base_tick_ = 0;       // the shared frame's predecessor: its clients can use it
     uint32_t shared_next_id_ = 0;         // bodies from this id on are new since the last shared frame
     flatbuffers::FlatBufferBuilder fbb_{1024};
+    // budgeted_frame()'s scratch
+    std::vector<uint8_t> chosen_;
+    std::vector<uint32_t> sent_;
+    std::vector<client_views::held_body> held_;
+    shape_tracker trial_shapes_;
     fanout_counters counters_;
 };
 

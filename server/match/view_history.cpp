@@ -24,10 +24,16 @@ const std::vector<delta::quantized_body>* quantized_history::at(uint32_t tick) c
 
 client_views::client_views(tick_ring ring) : ring_(ring), entries_(ring.depth) {}
 
-void client_views::record(uint32_t tick, std::span<const uint32_t> indices) {
+void client_views::record(uint32_t tick, std::span<const uint32_t> indices, std::span<const held_body> held) {
     entry& e = entries_[ring_.slot(tick)];
     e.tick = tick;
     e.indices.assign(indices.begin(), indices.end());
+    e.held.assign(held.begin(), held.end());
+}
+
+std::span<const client_views::held_body> client_views::held_at(uint32_t tick) const {
+    const entry& e = entries_[ring_.slot(tick)];
+    return tick != 0 && e.tick == tick ? std::span<const held_body>(e.held) : std::span<const held_body>();
 }
 
 const std::vector<uint32_t>* client_views::at(uint32_t tick) const {

@@ -3,13 +3,14 @@
 // next snapshot against the one the client acknowledged (delta snapshots, protocol/README.md):
 // - the quantised world at each of the last `depth` snapshot ticks, shared by every client;
 // - per client, which of those bodies each of its last `depth` snapshots held (indices into
-//   the shared state: 4 bytes a body instead of 28).
+//   the shared state: 4 bytes a body instead of 28), and the few it holds at other states.
 // Both are rings keyed by tick, so a baseline is found in O(1) and memory stays bounded.
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "protocol/delta/quantize.hpp"
+#include "protocol/delta/shared_encoder.hpp"
 #include "server/world/body.hpp"
 
 namespace arena::match {
@@ -42,14 +43,20 @@ private:
 class client_views {
 public:
     explicit client_views(tick_ring ring);
-    // The view sent at `tick`: indices into that tick's quantized_history state, increasing.
-    void record(uint32_t tick, std::span<const uint32_t> indices);
+    using held_body = protocol::delta::shared_encoder::held_body;
+    // The view sent at `tick`: indices into that tick's quantized_history state, increasing;
+    // `held`: those of its bodies the client holds at other states (left out of a snapshot
+    // under a bandwidth budget, kept as predicted), by increasing index.
+    void record(uint32_t tick, std::span<const uint32_t> indices, std::span<const held_body> held = {});
     [[nodiscard]] const std::vector<uint32_t>* at(uint32_t tick) const;
+    // The held bodies of the view at `tick` (empty when none, or not kept).
+    [[nodiscard]] std::span<const held_body> held_at(uint32_t tick) const;
 
 private:
     struct entry {
         uint32_t tick = 0;
         std::vector<uint32_t> indices;
+        std::vector<held_body> held;
     };
     tick_ring ring_;
     std::vector<entry> entries_;

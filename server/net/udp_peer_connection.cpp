@@ -61,6 +61,10 @@ void udp_peer_connection::send_packet(std::span<const uint8_t> bytes, enet_uint8
     owner_.flush_soon();
 }
 
+size_t udp_peer_connection::snapshot_budget() const {
+    return owner_.snapshot_budget();
+}
+
 void udp_peer_connection::send(protocol::frame_bytes frame) {
     if (closing_) return;
     send_packet(frame, channel_reliable, ENET_PACKET_FLAG_RELIABLE);
@@ -81,8 +85,9 @@ void udp_peer_connection::send_snapshot_bytes(std::span<const uint8_t> bytes) {
     // One datagram, unsequenced: a lost snapshot is replaced by the next one, never resent,
     // and a late one is dropped by the client. A snapshot over the datagram budget (a full
     // view of a crowded area) goes as unreliable fragments: it arrives whole or not at all,
-    // and the client keeps acking its older baseline until one does. It is counted, so an
-    // operator sees when views outgrow the budget (a per-client priority budget is the fix).
+    // and the client keeps acking its older baseline until one does. Delta snapshots are
+    // built within the budget (snapshot_budget() above); what still goes over (BodyState
+    // snapshots of a crowded view) is counted.
     if (bytes.size() <= owner_.snapshot_budget()) {
         send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNSEQUENCED);
     } else {

@@ -32,6 +32,7 @@ public:
     void close(protocol::RejectCode code, std::string_view reason) override;
     void close_with_bye(std::string_view reason) override;
     std::string_view peer() const override { return peer_text_; }
+    size_t snapshot_budget() const override;
 
     // One datagram from the peer: framed, verified, handed to the match. False: the
     // connection is over (the match refused it or the client said Bye).

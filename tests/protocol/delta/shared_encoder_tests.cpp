@@ -109,3 +109,69 @@ TEST_CASE("A shared encoding is no larger than a few bytes over the per-view enc
     }
     CHECK(static_cast<double>(shared_total) <= 1.05 * static_cast<double>(plain_total) + 50 * 4);
 }
+
+TEST_CASE("Encodings of part of a view: chosen bodies exact, the baseline's others kept as predicted",
+          "[protocol][delta][property]") {
+    // One client over many snapshots, each holding a random part of a random view: what it
+    // decodes must be exactly what encode_chosen() says it now holds, chained from one
+    // snapshot to the next through the held bodies (decoded against the previous result).
+    rng r(20261201);
+    std::vector<ad::quantized_body> state;
+    for (std::uint32_t id = 1; id <= 400; ++id) {
+        if (r.chance(0.8)) state.push_back(ad::test::random_body(r, id));
+    }
+    ad::shared_encoder encoder;
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint32_t> sent;
+    std::vector<ad::shared_encoder::held_body> held;
+    // What the client holds: its view (indices into `prev`), those at other states, and prev.
+    std::vector<ad::quantized_body> prev;
+    std::vector<std::uint32_t> holds_view;
+    std::vector<ad::shared_encoder::held_body> holds_other;
+    std::vector<ad::quantized_body> client;  // the decoded view
+    std::size_t kept = 0, refreshed_from_held = 0;
+    for (int snapshot = 0; snapshot < 80; ++snapshot) {
+        const bool full = snapshot % 20 == 0;  // now and then the client lost its baseline
+        ad::test::evolve(state, r, 3, 60);
+        const ad::elapsed_time elapsed{full ? 0u : 3u, 60};
+        encoder.prepare(state, full ? std::nullopt : std::optional<ad::view>(prev), elapsed);
+        const std::vector<std::uint32_t> current = random_view(r, state.size(), r.uniform(0.5, 1.0));
+        std::vector<std::uint8_t> chosen(current.size());
+        const double share = r.uniform(0.0, 1.0);
+        for (auto& c : chosen) c = r.chance(share) ? 1 : 0;
+        encoder.encode_chosen(current, chosen, full ? std::span<const std::uint32_t>() : holds_view,
+                              full ? std::span<const ad::shared_encoder::held_body>() : holds_other, sent, held, bytes);
+        const auto decoded = ad::decode(bytes, full ? std::nullopt : std::optional<ad::view>(client), elapsed);
+        INFO("snapshot " << snapshot << ": " << decoded.error);
+        REQUIRE(decoded.ok());
+        // Expected: the sent view at this state, except the held bodies.
+        std::vector<ad::quantized_body> expected;
+        std::size_t h = 0;
+        for (const std::uint32_t i : sent) {
+            while (h < held.size() && held[h].index < i) ++h;
+            expected.push_back(h < held.size() && held[h].index == i ? held[h].state : state[i]);
+        }
+        REQUIRE(decoded.value == expected);
+        // Every chosen body is there at this state; every other one is either kept (it was in
+        // the client's view) or absent (new to it): never half-way.
+        for (std::size_t k = 0; k < current.size(); ++k) {
+            const auto at = std::ranges::find(sent, current[k]);
+            if (chosen[k]) {
+                REQUIRE(at != sent.end());
+                REQUIRE(std::ranges::find(held, current[k], &ad::shared_encoder::held_body::index) == held.end());
+                if (!full && std::ranges::find(holds_other, state[current[k]].id,
+                                               [&](const auto& o) { return o.state.id; }) != holds_other.end())
+                    ++refreshed_from_held;
+            } else if (at != sent.end()) {
+                REQUIRE(std::ranges::find(client, state[current[k]].id, &ad::quantized_body::id) != client.end());
+                ++kept;
+            }
+        }
+        client = decoded.value;
+        prev = state;
+        holds_view = sent;
+        holds_other = held;
+    }
+    CHECK(kept > 1000);
+    CHECK(refreshed_from_held > 100);
+}
