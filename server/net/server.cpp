@@ -129,7 +129,7 @@ boost::asio::awaitable<void> server::accept_loop() {
         accept_backoff_.succeeded();
         auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
         sessions_.emplace(s->id(), s);
-        process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size());
+        process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size() + peers_open_);
         s->start();
         match_.connect(*s);  // after start(), so that a refused client reads why
     }
@@ -200,7 +200,7 @@ void server::log_stats(int64_t now) {
 
 ops::process_counters server::process_counters() const {
     ops::process_counters p = process_;
-    p.connections_open = sessions_.size();
+    p.connections_open = sessions_.size() + peers_open_;
     p.tick_overruns = clock_.overruns();
     return p;
 }
@@ -220,6 +220,15 @@ ops::server_metrics server::metrics_snapshot() const {
 void server::on_gone(session& s) {
     sessions_.erase(s.id());
     if (stopping_ && sessions_.empty()) finish();
+}
+
+void server::count_peer_opened() {
+    ++peers_open_;
+    process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size() + peers_open_);
+}
+
+void server::count_peer_closed() {
+    if (peers_open_ > 0) --peers_open_;
 }
 
 void server::count_in(size_t bytes) {

@@ -66,6 +66,11 @@ public:
     void on_gone(session& s);
     void count_in(size_t bytes);
     void count_message_in() { ++process_.messages_in; }
+    // From a datagram transport (UDP): a client connection opened or closed there, counted
+    // with the TCP sessions in connections_open and the peak; a snapshot sent as fragments.
+    void count_peer_opened();
+    void count_peer_closed();
+    void count_fragmented_snapshot() { ++process_.snapshots_fragmented; }
     // The figures /metrics shows.
     ops::server_metrics metrics_snapshot() const;
     // The process's counters now.
@@ -99,6 +104,7 @@ private:
     ops::accept_backoff accept_backoff_;  // out of descriptors: pause accepting, log at a bounded rate
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
+    uint64_t peers_open_ = 0;                                // connections of datagram transports
     std::vector<std::shared_ptr<session>> reading_;          // read_sessions()' copy: reading may close one
     std::array<uint8_t, 64 * 1024> read_buffer_{};           // one for every session: one thread reads
     uint64_t next_session_id_ = 1;

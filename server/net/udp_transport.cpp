@@ -158,6 +158,7 @@ void udp_transport::on_connect(ENetPeer* peer) {
     enet_peer_timeout(peer, 0, 3000, 10000);
     udp_peer_connection& ref = *c;
     connections_.emplace(c->id(), std::move(c));
+    owner_.count_peer_opened();
     match().connect(ref);  // refused: it is closing, its Reject queued
 }
 
@@ -175,7 +176,17 @@ void udp_transport::on_disconnect(ENetPeer* peer) {
     c->forget_peer();
     if (!c->closing())
         match().disconnect(*c, {match::close_cause::kind::connection_closed, {}, "the ENet peer disconnected"});
-    connections_.erase(c->id());
+    if (auto it = connections_.find(c->id()); it != connections_.end()) forget(it);
+}
+
+std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator udp_transport::forget(
+    std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator it) {
+    owner_.count_peer_closed();
+    return connections_.erase(it);
+}
+
+void udp_transport::count_fragmented_snapshot() {
+    owner_.count_fragmented_snapshot();
 }
 
 void udp_transport::reap_closing() {
@@ -189,7 +200,7 @@ void udp_transport::reap_closing() {
                 peer->data = nullptr;
                 enet_peer_reset(peer);
             }
-            it = connections_.erase(it);
+            it = forget(it);
         } else {
             ++it;
         }

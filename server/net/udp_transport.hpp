@@ -46,7 +46,7 @@ public:
     int64_t now_ns() const;
     void count_out(size_t bytes);
     void count_message_in();
-    void count_fragmented_snapshot() { ++fragmented_snapshots_; }
+    void count_fragmented_snapshot();
     size_t snapshot_budget() const { return options_.snapshot_budget; }
     // Sends what ENet queued once the current handler returns (one flush for a tick's fan-out).
     void flush_soon();
@@ -54,7 +54,6 @@ public:
 
     size_t peers() const { return connections_.size(); }
     const connect_gate& gate() const { return gate_; }
-    uint64_t fragmented_snapshots() const { return fragmented_snapshots_; }
 
 private:
     void wait_readable();
@@ -64,6 +63,9 @@ private:
     void on_receive(ENetPeer* peer, ENetPacket* packet);
     void on_disconnect(ENetPeer* peer);
     void reap_closing();
+    // Forgets a peer's connection; the server counts it closed.
+    std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator forget(
+        std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator it);
     static int ENET_CALLBACK intercept(ENetHost* host, ENetEvent* event);
 
     boost::asio::io_context& io_;
@@ -78,7 +80,6 @@ private:
     uint64_t next_id_ = 1;
     bool flush_posted_ = false;
     bool stopped_ = false;
-    uint64_t fragmented_snapshots_ = 0;
 };
 
 }  // namespace arena::net

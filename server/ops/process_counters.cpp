@@ -20,6 +20,9 @@ void report(const process_counters& c, match::figure_sink& out) {
     out.counter({"messages_in", "arena_received_messages_total", "Protocol messages read from clients."},
                 c.messages_in);
     out.counter({"messages_out", "arena_sent_messages_total", "Protocol messages written to clients."}, c.messages_out);
+    out.counter({"snapshots_fragmented", "arena_snapshots_fragmented_total",
+                 "UDP snapshots larger than a datagram, sent as ENet fragments (BodyState views)."},
+                c.snapshots_fragmented);
 }
 
 }  // namespace arena::ops

@@ -20,14 +20,15 @@ struct stats_window {
 };
 
 struct process_counters {
-    uint64_t connections_open = 0;  // client connections now, joined or not
-    uint64_t connections_peak = 0;  // most at once
-    uint64_t bytes_in = 0;          // read from clients
-    uint64_t bytes_out = 0;         // written to clients
-    uint64_t messages_in = 0;       // verified protocol messages read
-    uint64_t messages_out = 0;      // frames written
-    uint64_t tick_overruns = 0;     // ticks dropped because the loop fell behind
-    stats_window window;            // filled for the stats log line only
+    uint64_t connections_open = 0;      // client connections now, joined or not, TCP and UDP
+    uint64_t connections_peak = 0;      // most at once
+    uint64_t bytes_in = 0;              // read from clients
+    uint64_t bytes_out = 0;             // written to clients
+    uint64_t messages_in = 0;           // verified protocol messages read
+    uint64_t messages_out = 0;          // frames written
+    uint64_t tick_overruns = 0;         // ticks dropped because the loop fell behind
+    uint64_t snapshots_fragmented = 0;  // UDP snapshots over the datagram budget, sent as fragments
+    stats_window window;                // filled for the stats log line only
 };
 
 void report(const process_counters& c, match::figure_sink& out);

@@ -97,6 +97,27 @@ TEST_CASE("a client joins over UDP beside TCP, its inputs are consumed and snaps
     CHECK(server.process.stop(SIGTERM) == 0);
 }
 
+TEST_CASE("UDP peers count as connections like TCP ones: the stats line's connections=", "[net][udp]") {
+    udp_server server({"--stats-interval", "0.2"});
+    test_client tcp(server.process.port());
+    udp_client c(server.udp_port);
+    join(c);
+    // A stats line after `from` in the log showing `text`, within 3 s.
+    auto stats_line_after = [&](size_t from, const std::string& text) {
+        for (int k = 0; k < 60; ++k) {
+            if (server.process.log().find(text, from) != std::string::npos) return true;
+            std::this_thread::sleep_for(50ms);
+        }
+        return false;
+    };
+    CHECK(stats_line_after(0, "connections=2\n"));
+    // A Bye: the server closes the peer once ENet delivered its last word, and forgets it.
+    c.send_reliable(protocol::encode_bye("done"));
+    c.pump(500ms);
+    CHECK(stats_line_after(server.process.log().size(), "connections=1\n"));
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
 TEST_CASE("a UDP datagram whose length prefix is too large is refused like those bytes on TCP", "[net][udp]") {
     udp_server server({});
     udp_client c(server.udp_port);
