@@ -15,11 +15,12 @@ endif
 # Debian packages the build and every test need (see ../shared/DEPS.md): nothing in `make test`
 # may skip for want of a tool. libboost1.81-dev: Boost.Asio and Beast (only 1.81: it conflicts
 # with 1.74); libenet-dev: the UDP transport; g++-aarch64-linux-gnu and qemu-user-static: the
-# aarch64 replay check; ccache: rebuilds in CI and in the determinism check.
+# aarch64 replay check; ccache: rebuilds in CI and in the determinism check; nftables, iproute2
+# and python3: the short bench-loss test (tests/e2e/loss_smoke.sh).
 PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
   libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus ccache \
-  g++-aarch64-linux-gnu qemu-user-static libenet-dev
+  g++-aarch64-linux-gnu qemu-user-static libenet-dev nftables iproute2 python3
 # npm runs the Dockerfile linters. Debian's nodejs brings it along with npm; but where node
 # already came from elsewhere with npm inside, installing Debian's npm over it fails (held
 # packages), so these are installed only when there is no `npm` command.

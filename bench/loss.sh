@@ -5,7 +5,9 @@
 # kernels). Latency is added on the bots' side (arena-bots --simulate-latency, UDP only: a TCP
 # socket cannot be delayed from user space without reordering its bytes). One table.
 # Env: LOSS_PERCENT ("0 1 2 5 10"), LOSS_LATENCY_MS ("0 50 100"), LOSS_SECONDS (8),
-#      LOSS_BOTS (16).
+#      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp"), LOSS_WORK (a folder that keeps each run's
+#      bots' --json LABEL.json and server's --stats-json LABEL.stats.json, LABEL being
+#      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed).
 set -euo pipefail
 bin=${1:-build/bin}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -13,11 +15,13 @@ losses=${LOSS_PERCENT:-0 1 2 5 10}
 latencies=${LOSS_LATENCY_MS:-0 50 100}
 seconds=${LOSS_SECONDS:-8}
 bots=${LOSS_BOTS:-16}
+transports=${LOSS_TRANSPORTS:-tcp udp}
 [ "$(id -u)" = 0 ] || { echo "bench-loss: needs root (ip netns, nft)" >&2; exit 1; }
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
-work=$(mktemp -d /tmp/arena-bench-loss.XXXXXX)
+keep=${LOSS_WORK:-}
+if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-loss.XXXXXX); fi
 ns=arena-loss-$$
-cleanup() { ip netns del "$ns" 2>/dev/null || true; rm -rf "$work"; }
+cleanup() { ip netns del "$ns" 2>/dev/null || true; [ -n "$keep" ] || rm -rf "$work"; }
 trap cleanup EXIT
 
 # run TRANSPORT LOSS_PERMILLE LATENCY_MS LABEL: one server and its bots in a fresh namespace.
@@ -33,7 +37,7 @@ run() {
   fi
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$ns" "$bin/arena-server" --port 0 --udp-port 0 --max-players "$bots" --duration $((seconds + 30)) \
-    > "$work/$label.out" 2> "$work/$label.log" &
+    --stats-json "$work/$label.stats.json" > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   local prefix="listening on"; [ "$transport" = udp ] && prefix="udp listening on"
   for _ in $(seq 100); do
@@ -54,7 +58,7 @@ labels=()
 for latency in $latencies; do
   for loss in $losses; do
     permille=$(awk -v p="$loss" 'BEGIN { printf "%d", p * 10 }')
-    for transport in tcp udp; do
+    for transport in $transports; do
       # TCP cannot get the bots' simulated latency: only its 0 ms rows are measured.
       [ "$transport" = tcp ] && [ "$latency" -gt 0 ] && continue
       label="$transport-$loss-$latency"

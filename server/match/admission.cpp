@@ -129,11 +129,13 @@ std::variant<admitted_input, rejection> admission::admit_input(client_standing& 
     // Decoding checked that the earlier sequences rise and stay below this one: those not taken
     // yet are taken now, in order, each once.
     admitted_input out{false, in, {}};
+    const uint32_t gap = input.sequence - client.last_sequence - 1;
     for (const protocol::earlier_input& e : input.earlier) {
         if (e.sequence <= client.last_sequence) continue;
         out.recovered.push_back({e.sequence, {e.thrust, e.turn, e.buttons}});
         client.last_sequence = e.sequence;
     }
+    out.lost = gap - out.recovered.size();
     client.last_sequence = input.sequence;
     return out;
 }

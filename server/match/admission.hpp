@@ -99,6 +99,9 @@ struct admitted_input {
     // Earlier inputs (Input.earlier) newer than the last taken, oldest first: each goes to the
     // buffer before `input`, so a lost datagram's input arrives with the next one.
     std::vector<sequenced_input> recovered;
+    // Sequences between the last taken and this one that neither came nor were repeated in
+    // `earlier`: inputs the world never gets (a gap the redundant inputs did not close).
+    uint64_t lost = 0;
 };
 
 class admission {

@@ -225,6 +225,7 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
     p.snapshots.acked_tick = input.snapshot_ack;
     for (const sequenced_input& earlier : in.recovered) p.inputs.push(earlier);
     counters_.inputs_recovered += in.recovered.size();
+    counters_.inputs_lost += in.lost;
     p.inputs.push({input.sequence, in.input});
     return true;
 }

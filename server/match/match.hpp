@@ -59,6 +59,7 @@ struct match_counters {
     uint64_t inputs_received = 0;
     uint64_t stale_inputs = 0;      // sequence not above the last received: ignored
     uint64_t inputs_recovered = 0;  // taken from a later Input's `earlier`: its own datagram was lost or late
+    uint64_t inputs_lost = 0;       // sequences skipped: neither their Input nor a later one's `earlier` came
     uint64_t snapshot_bytes = 0;    // the last snapshot frame built, bytes
     uint64_t reconnects = 0;
     uint64_t takeovers = 0;

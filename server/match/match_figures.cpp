@@ -41,6 +41,9 @@ void report(const match_counters& c, figure_sink& out) {
     out.counter({"inputs_recovered", "arena_inputs_recovered_total",
                  "Inputs taken from a later Input's earlier list: their own message was lost or late."},
                 c.inputs_recovered);
+    out.counter({"inputs_lost", "arena_inputs_lost_total",
+                 "Input sequences the world never got: skipped, and not repeated in a later Input's earlier list."},
+                c.inputs_lost);
     out.counter({"snapshots_sent", "arena_snapshots_sent_total", "Snapshots sent, one per client per broadcast."},
                 c.snapshots_sent);
     out.gauge({"", "arena_snapshot_size_bytes", "Size of the last snapshot frame built."}, c.snapshot_bytes);

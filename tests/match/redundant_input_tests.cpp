@@ -70,9 +70,23 @@ TEST_CASE("earlier inputs are taken in order, each once, before the Input that c
     const std::vector<float> expected = {0.01f, 0.02f, 0.03f, 0.04f, 0.05f, 0.06f, 0.06f};  // then an underrun
     CHECK(applied == expected);
     CHECK(m.counters().inputs_recovered == 3);  // 2, 3 and 5
+    CHECK(m.counters().inputs_lost == 0);
     CHECK(m.counters().stale_inputs == 1);
     CHECK(m.counters().inputs_received == 4);  // messages: the rate limit counts these
     CHECK_FALSE(c.rejected);
+}
+
+TEST_CASE("inputs that neither came nor were repeated are counted lost", "[match][udp]") {
+    match::match m({}, small_world());
+    client c;
+    REQUIRE(join(m, c, {protocol::protocol_version, "ann", ""}) != 0);
+    REQUIRE(send_input(m, c, input(1)));
+    REQUIRE(send_input(m, c, input(5, {3, 4})));  // 2 is gone for good
+    REQUIRE(send_input(m, c, input(9)));          // 6, 7 and 8 too (a client without earlier lists)
+    REQUIRE(send_input(m, c, input(8)));          // late: stale, not found again
+    CHECK(m.counters().inputs_lost == 4);
+    CHECK(m.counters().inputs_recovered == 2);
+    CHECK(m.counters().stale_inputs == 1);
 }
 
 TEST_CASE("an Input's earlier list out of order, too long or not finite is refused with bad_input", "[match][udp]") {
