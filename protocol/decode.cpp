@@ -124,14 +124,29 @@ result<pong_msg> decode_pong(const Message& message) {
 result<bye_msg> decode_bye(const Message& message) {
     const auto* t = message.payload_as<Bye>();
     if (t == nullptr) return result<bye_msg>::failure(unexpected(message, Payload::Bye));
-    return result<bye_msg>::success({to_string(t->reason())});
+    bye_msg bye{to_string(t->reason())};
+    if (!t->match_over()) return result<bye_msg>::success(std::move(bye));
+    match_result& r = bye.result;
+    r.over = true;
+    r.winner = t->winner();
+    const std::size_t lines = t->scoreboard() == nullptr ? 0 : t->scoreboard()->size();
+    const std::size_t names = t->scoreboard_names() == nullptr ? 0 : t->scoreboard_names()->size();
+    if (lines != names)
+        return result<bye_msg>::failure("Bye: " + std::to_string(lines) + " scoreboard lines for " +
+                                        std::to_string(names) + " scoreboard_names");
+    for (std::size_t i = 0; i < lines; ++i) {
+        const auto k = static_cast<flatbuffers::uoffset_t>(i);
+        r.scoreboard.push_back(from_wire(*t->scoreboard()->Get(k)));
+        r.names.push_back(t->scoreboard_names()->Get(k)->str());
+    }
+    return result<bye_msg>::success(std::move(bye));
 }
 
 result<snapshot_view> decode_snapshot(const Message& message) {
     const auto* t = message.payload_as<Snapshot>();
     if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
-    snapshot_view view{t->tick(),   t->ack_sequence(),  {}, t->baseline_tick(), {}, false,
-                       t->shapes(), t->shape_vertices()};
+    snapshot_view view{t->tick(),   t->ack_sequence(),   {}, t->baseline_tick(), {}, false,
+                       t->shapes(), t->shape_vertices(), t};
     if (const auto* delta = t->delta(); delta != nullptr) {
         view.is_delta = true;
         view.delta = {delta->data(), delta->size()};

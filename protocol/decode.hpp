@@ -34,6 +34,8 @@ struct snapshot_view {
     // read_shapes() (shapes.hpp) checks and reads them. Null when absent.
     const flatbuffers::Vector<const BodyShape*>* shapes = nullptr;
     const flatbuffers::Vector<const ShapeVertex*>* shape_vertices = nullptr;
+    // The table itself: read_game() (game.hpp) reads the players, names and events from it.
+    const Snapshot* table = nullptr;
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 

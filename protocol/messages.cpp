@@ -94,10 +94,19 @@ frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick) {
     return to_frame(fbb);
 }
 
-frame_bytes encode_bye(std::string_view reason) {
+frame_bytes encode_bye(std::string_view reason, const match_result* result) {
     flatbuffers::FlatBufferBuilder fbb(small_message_bytes + reason.size());
     const auto text = make_string(fbb, reason);
-    finish_message(fbb, Payload::Bye, CreateBye(fbb, text).Union());
+    if (result == nullptr || !result->over) {
+        // Byte for byte the Bye of before the game's fields.
+        finish_message(fbb, Payload::Bye, CreateBye(fbb, text).Union());
+        return to_frame(fbb);
+    }
+    std::vector<PlayerLine> lines;
+    for (const player_row& r : result->scoreboard) lines.push_back(to_wire(r));
+    const auto board = fbb.CreateVectorOfStructs(lines.data(), lines.size());
+    const auto names = fbb.CreateVectorOfStrings(result->names);
+    finish_message(fbb, Payload::Bye, CreateBye(fbb, text, true, result->winner, board, names).Union());
     return to_frame(fbb);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "protocol/arena_generated.h"
+#include "protocol/game.hpp"
 #include "protocol/shapes.hpp"
 
 namespace arena::protocol {
@@ -78,6 +79,7 @@ struct pong_msg {
 
 struct bye_msg {
     std::string reason;
+    match_result result{};  // the end of a match: the winner and the final scoreboard
     bool operator==(const bye_msg&) const = default;
 };
 
@@ -93,7 +95,8 @@ inline constexpr std::uint8_t button_impulse = 1u << 0;
 flatbuffers::Offset<Input> create_input(flatbuffers::FlatBufferBuilder& fbb, const input_msg& input);
 [[nodiscard]] frame_bytes encode_ping(std::uint64_t client_time);
 [[nodiscard]] frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick);
-[[nodiscard]] frame_bytes encode_bye(std::string_view reason);
+// `result` (optional): the match is over (README.md, "Players and game events").
+[[nodiscard]] frame_bytes encode_bye(std::string_view reason, const match_result* result = nullptr);
 
 // Wraps a finished payload table in a Message and finishes the buffer size-prefixed with
 // the file identifier. For builders that encode into a caller-owned FlatBufferBuilder.

@@ -38,8 +38,49 @@ shape_offsets add_shapes(flatbuffers::FlatBufferBuilder& fbb, const shape_list* 
             fbb.CreateVectorOfStructs(list->vertices.data(), list->vertices.size())};
 }
 
+// The game's four vectors, absent when there is nothing to say (as for shapes).
+struct game_offsets {
+    flatbuffers::Offset<flatbuffers::Vector<const PlayerLine*>> players;
+    flatbuffers::Offset<flatbuffers::Vector<std::uint32_t>> name_ids;
+    flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> names;
+    flatbuffers::Offset<flatbuffers::Vector<const GameEvent*>> events;
+};
+game_offsets add_game(flatbuffers::FlatBufferBuilder& fbb, const game_list* game) {
+    game_offsets out;
+    if (game == nullptr || game->empty()) return out;
+    if (!game->players.empty()) {
+        std::vector<PlayerLine> lines;
+        lines.reserve(game->players.size());
+        for (const player_row& r : game->players) lines.push_back(to_wire(r));
+        out.players = fbb.CreateVectorOfStructs(lines.data(), lines.size());
+    }
+    if (!game->name_ids.empty()) {
+        out.name_ids = fbb.CreateVector(game->name_ids);
+        out.names = fbb.CreateVectorOfStrings(game->names);
+    }
+    if (!game->events.empty()) {
+        std::vector<GameEvent> events;
+        events.reserve(game->events.size());
+        for (const game_event& e : game->events) events.push_back(to_wire(e));
+        out.events = fbb.CreateVectorOfStructs(events.data(), events.size());
+    }
+    return out;
+}
+
+flatbuffers::Offset<Snapshot> create_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
+                                              std::uint32_t ack_sequence,
+                                              flatbuffers::Offset<flatbuffers::Vector<const BodyState*>> bodies,
+                                              std::uint32_t baseline_tick,
+                                              flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> delta,
+                                              const shape_list* shapes, const game_list* game) {
+    const shape_offsets described = add_shapes(fbb, shapes);
+    const game_offsets g = add_game(fbb, game);
+    return CreateSnapshot(fbb, tick, ack_sequence, bodies, baseline_tick, delta, described.shapes, described.vertices,
+                          g.players, g.name_ids, g.names, g.events);
+}
+
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,
-                    std::span<const BodyState> bodies, const shape_list* shapes) {
+                    std::span<const BodyState> bodies, const shape_list* shapes, const game_list* game) {
     fbb.Clear();  // keeps the allocated block: no allocation once the builder is warm
     // The rare broken world: a finite copy (allocates; never on a healthy server's path).
     std::vector<BodyState> repaired;
@@ -54,10 +95,8 @@ void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std
     }
     // One PushBytes of bodies.size() * 32 bytes, no per-body work.
     const auto body_vector = fbb.CreateVectorOfStructs(bodies.data(), bodies.size());
-    const shape_offsets described = add_shapes(fbb, shapes);
-    finish_message(
-        fbb, Payload::Snapshot,
-        CreateSnapshot(fbb, tick, ack_sequence, body_vector, 0, 0, described.shapes, described.vertices).Union());
+    finish_message(fbb, Payload::Snapshot,
+                   create_snapshot(fbb, tick, ack_sequence, body_vector, 0, 0, shapes, game).Union());
 }
 
 std::span<const std::uint8_t> finished(const flatbuffers::FlatBufferBuilder& fbb) {
@@ -82,28 +121,28 @@ std::uint64_t non_finite_values_replaced() noexcept {
 
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                               std::uint32_t ack_sequence, std::span<const BodyState> bodies,
-                                              const shape_list* shapes) {
-    build_snapshot(fbb, tick, ack_sequence, bodies, shapes);
+                                              const shape_list* shapes, const game_list* game) {
+    build_snapshot(fbb, tick, ack_sequence, bodies, shapes, game);
     return finished(fbb);
 }
 
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
-                                                    std::span<const std::uint8_t> delta, const shape_list* shapes) {
+                                                    std::span<const std::uint8_t> delta, const shape_list* shapes,
+                                                    const game_list* game) {
     fbb.Clear();
     const auto bytes = fbb.CreateVector(delta.data(), delta.size());
-    const shape_offsets described = add_shapes(fbb, shapes);
-    finish_message(
-        fbb, Payload::Snapshot,
-        CreateSnapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes, described.shapes, described.vertices).Union());
+    finish_message(fbb, Payload::Snapshot,
+                   create_snapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes, shapes, game).Union());
     return finished(fbb);
 }
 
-void snapshot_encoder::build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes) {
+void snapshot_encoder::build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes,
+                             const game_list* game) {
     // FlatBuffers omits a field equal to its default; ack_sequence must be present in the
     // buffer to be patched in place, so force every field to be written.
     fbb_.ForceDefaults(true);
-    build_snapshot(fbb_, tick, 0, bodies, shapes);
+    build_snapshot(fbb_, tick, 0, bodies, shapes, game);
     built_ = true;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "protocol/arena_generated.h"
+#include "protocol/game.hpp"
 #include "protocol/shapes.hpp"
 
 namespace arena::protocol {
@@ -27,24 +28,28 @@ namespace arena::protocol {
 // Clears fbb and encodes one finished Snapshot frame into it. Returns the frame, which lives
 // in fbb and stays valid until fbb is next cleared or destroyed.
 // `shapes` (optional): descriptions of bodies entering the client's view (README.md, "Shapes").
+// `game` (optional): player lines, names and events (README.md, "Players and game events").
 std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                               std::uint32_t ack_sequence, std::span<const BodyState> bodies,
-                                              const shape_list* shapes = nullptr);
+                                              const shape_list* shapes = nullptr, const game_list* game = nullptr);
 
 // Clears fbb and encodes one client's delta Snapshot frame (empty bodies; `delta` holds the
 // codec's bytes, protocol/delta/codec.hpp). baseline_tick 0: encoded without a baseline.
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
                                                     std::span<const std::uint8_t> delta,
-                                                    const shape_list* shapes = nullptr);
+                                                    const shape_list* shapes = nullptr,
+                                                    const game_list* game = nullptr);
 
 // Encodes a tick's snapshot once; each client's copy differs only in ack_sequence, which is
 // patched into the copy in place. Cost per client: one memcpy of the frame.
 class snapshot_encoder {
 public:
     // bodies: every body, in increasing id order. Replaces the previous tick's frame.
-    // shapes: descriptions every client of this frame needs (the bodies new since the last).
-    void build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes = nullptr);
+    // shapes: descriptions every client of this frame needs (the bodies new since the last);
+    // game: likewise the player lines, names and events new since the last.
+    void build(std::uint32_t tick, std::span<const BodyState> bodies, const shape_list* shapes = nullptr,
+               const game_list* game = nullptr);
 
     // The built frame with ack_sequence 0. Valid until the next build().
     [[nodiscard]] std::span<const std::uint8_t> frame() const noexcept;

@@ -122,3 +122,62 @@ TEST_CASE("An old client reads snapshots carrying shapes: full, shared with its 
     REQUIRE(d->delta() != nullptr);
     CHECK(std::vector<std::uint8_t>(d->delta()->begin(), d->delta()->end()) == codec);
 }
+
+namespace {
+
+ap::game_list some_game() {
+    ap::game_list g;
+    for (std::uint32_t p = 1; p <= 32; ++p) {
+        g.players.push_back({p, 20 * p, p % 3, p % 2, 7 * p, 3 * p, 2, ap::PlayerState::respawning});
+        g.name_ids.push_back(p);
+        g.names.push_back("bot-" + std::to_string(p));
+    }
+    for (std::uint32_t k = 1; k <= 20; ++k)
+        g.events.push_back({k, 100 + k, ap::GameEventKind::ship_destroyed, 0, k, k + 1, 300 + k, 0});
+    return g;
+}
+
+}  // namespace
+
+TEST_CASE("An old client reads snapshots carrying the game: lines, names, events", "[protocol][compat]") {
+    const ap::shape_list shapes = some_shapes();
+    const ap::game_list game = some_game();
+    const std::vector<ap::BodyState> bodies = some_bodies();
+    flatbuffers::FlatBufferBuilder fbb;
+
+    const auto full = ap::encode_snapshot(fbb, 12, 5, bodies, &shapes, &game);
+    const std::vector<std::uint8_t> full_frame(full.begin(), full.end());
+    const old::Snapshot* s = old_read(full_frame)->payload_as_Snapshot();
+    REQUIRE(s != nullptr);
+    CHECK(s->ack_sequence() == 5);
+    REQUIRE(s->bodies()->size() == bodies.size());
+    CHECK(s->bodies()->Get(39)->x() == bodies[39].x());
+
+    ap::snapshot_encoder shared;
+    shared.build(13, bodies, &shapes, &game);
+    const std::vector<std::uint8_t> patched_frame = shared.frame_with_ack(41);
+    const old::Snapshot* patched = old_read(patched_frame)->payload_as_Snapshot();
+    REQUIRE(patched != nullptr);
+    CHECK(patched->ack_sequence() == 41);
+
+    const std::vector<std::uint8_t> codec{9, 8, 7, 6};
+    const auto delta = ap::encode_delta_snapshot(fbb, 14, 6, 11, codec, &shapes, &game);
+    const std::vector<std::uint8_t> delta_frame(delta.begin(), delta.end());
+    const old::Snapshot* d = old_read(delta_frame)->payload_as_Snapshot();
+    REQUIRE(d != nullptr);
+    CHECK(d->baseline_tick() == 11);
+    CHECK(std::vector<std::uint8_t>(d->delta()->begin(), d->delta()->end()) == codec);
+}
+
+TEST_CASE("An old client reads the Bye that ends a match as a Bye", "[protocol][compat]") {
+    ap::match_result r;
+    r.over = true;
+    r.winner = 7;
+    const ap::game_list game = some_game();
+    r.scoreboard = game.players;
+    r.names = game.names;
+    const auto frame = ap::encode_bye("match over", &r);
+    const old::Message* m = old_read(frame);
+    REQUIRE(m->payload_type() == old::Payload::Bye);
+    CHECK(m->payload_as_Bye()->reason()->str() == "match over");
+}
