@@ -66,12 +66,12 @@ test: build format-check lint-docker
 	$(MAKE) fuzz
 
 # libFuzzer (clang++-14, with ASan and UBSan) on the frame reader and message handling, the
-# replay-file reader (its checks, and its cost in world steps), the config loader and the delta
-# decoder, each for FUZZ_SECONDS from
+# replay-file reader (its checks, and its cost in world steps), the config loader, the delta
+# decoder and the UDP connect gate (what reads a datagram before ENet), each for FUZZ_SECONDS from
 # tests/fuzz/corpus/.
 # A crash stops the run; its input is saved under build-fuzz/crashes/.
 FUZZ_BUILD ?= build-fuzz
-FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta fuzz_replay_cost
+FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta fuzz_replay_cost fuzz_udp_gate
 ifdef CI
 FUZZ_SECONDS ?= 60
 else
