@@ -22,6 +22,8 @@ std::span<const uint8_t> snapshot_fanout::budgeted_frame(snapshot_client& client
     const std::span<const uint32_t> ranked = client.priorities.ranked();
 
     // The frame holding the first n ranked bodies, its shapes tracked in trial_shapes_.
+    // Everything the frame carries must be encoded here, so that the size tested is the size
+    // sent (anything added to the frame later would break the bound).
     std::span<const uint8_t> frame;
     size_t built = 0;
     auto build = [&](size_t n) {
