@@ -13,6 +13,7 @@
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 #include "server/net/udp_transport.hpp"
+#include "server/net/web_transport.hpp"
 #include "server/ops/ops_flags.hpp"
 #include "server/ops/ops_service.hpp"
 #include "server/replay/recorder.hpp"
@@ -31,6 +32,19 @@ int main(int argc, char** argv) {
     app.add_option("--udp-port", udp_port,
                    "also accept clients over UDP (ENet) on this port (default: off; 0 picks a free one)")
         ->check(CLI::Range(0, 65535));
+    int http_port = -1;  // off
+    app.add_option("--http-port", http_port,
+                   "also serve HTTP on this port (default: off; 0 picks a free one): the game over WebSocket at "
+                   "/ws, /metrics, /healthz, and the web page's files at /")
+        ->check(CLI::Range(0, 65535));
+    net::web_options web;
+    std::string web_root;
+    app.add_option("--web-root", web_root,
+                   "folder served at / on --http-port (default: the built or installed web folder, if any)")
+        ->check(CLI::ExistingDirectory);
+    app.add_option("--allowed-origin", web.allowed_origins,
+                   "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
+                   "repeatable (default: any)");
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
     app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
@@ -184,6 +198,17 @@ int main(int argc, char** argv) {
         if (udp_port >= 0) {
             udp.emplace(io, server, net::udp_options{.port = static_cast<uint16_t>(udp_port)});
             udp->start();  // prints "udp listening on HOST:PORT" after the TCP line
+        }
+        std::optional<net::web_transport> http;
+        if (http_port >= 0) {
+            web.port = static_cast<uint16_t>(http_port);
+            web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
+            http.emplace(io, server, web,
+                         ops::http_handlers{[&ops] { return ops.metrics_text(); },
+                                            [&server] {
+                                                return server.ticking();
+                                            }});
+            http->start();  // prints "http listening on HOST:PORT"
         }
         ops.start_after_listening();  // binds --metrics-port, then POST /ready to Agones
         io.run();                     // until the server drained: Bye sent, recording and stats flushed

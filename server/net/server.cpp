@@ -129,7 +129,7 @@ boost::asio::awaitable<void> server::accept_loop() {
         accept_backoff_.succeeded();
         auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
         sessions_.emplace(s->id(), s);
-        process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size() + peers_open_);
+        process_.connections_peak = std::max<uint64_t>(process_.connections_peak, open_connections());
         s->start();
         match_.connect(*s);  // after start(), so that a refused client reads why
     }
@@ -200,7 +200,7 @@ void server::log_stats(int64_t now) {
 
 ops::process_counters server::process_counters() const {
     ops::process_counters p = process_;
-    p.connections_open = sessions_.size() + peers_open_;
+    p.connections_open = open_connections();
     p.tick_overruns = clock_.overruns();
     return p;
 }
@@ -219,12 +219,22 @@ ops::server_metrics server::metrics_snapshot() const {
 
 void server::on_gone(session& s) {
     sessions_.erase(s.id());
-    if (stopping_ && sessions_.empty()) finish();
+    if (stopping_ && sessions_.empty() && other_open_ == 0) finish();
+}
+
+void server::transport_opened() {
+    ++other_open_;
+    process_.connections_peak = std::max<uint64_t>(process_.connections_peak, open_connections());
+}
+
+void server::transport_closed() {
+    if (other_open_ > 0) --other_open_;
+    if (stopping_ && sessions_.empty() && other_open_ == 0) finish();
 }
 
 void server::count_peer_opened() {
     ++peers_open_;
-    process_.connections_peak = std::max<uint64_t>(process_.connections_peak, sessions_.size() + peers_open_);
+    process_.connections_peak = std::max<uint64_t>(process_.connections_peak, open_connections());
 }
 
 void server::count_peer_closed() {
@@ -251,7 +261,7 @@ void server::shutdown(const std::string& reason) {
     tick_timer_.cancel();
     stop_timer_.cancel();
     match_.shut_down(reason);  // Bye to every connection
-    if (sessions_.empty()) {
+    if (sessions_.empty() && other_open_ == 0) {
         finish();
         return;
     }

@@ -71,6 +71,12 @@ public:
     void count_peer_opened();
     void count_peer_closed();
     void count_fragmented_snapshot() { ++process_.snapshots_fragmented; }
+    // From the other transports (WebSocket): a connection handed to the match opened, or is
+    // gone. Counted with the TCP sessions (connections_open, the peak), and shutdown waits for it.
+    void transport_opened();
+    void transport_closed();
+    // Client connections of every transport now.
+    uint64_t open_connections() const { return sessions_.size() + peers_open_ + other_open_; }
     // The figures /metrics shows.
     ops::server_metrics metrics_snapshot() const;
     // The process's counters now.
@@ -105,8 +111,9 @@ private:
     uint16_t port_ = 0;
     std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
     uint64_t peers_open_ = 0;                                // connections of datagram transports
-    std::vector<std::shared_ptr<session>> reading_;          // read_sessions()' copy: reading may close one
-    std::array<uint8_t, 64 * 1024> read_buffer_{};           // one for every session: one thread reads
+    uint64_t other_open_ = 0;  // connections of other stream transports (WebSocket): shutdown waits for them
+    std::vector<std::shared_ptr<session>> reading_;  // read_sessions()' copy: reading may close one
+    std::array<uint8_t, 64 * 1024> read_buffer_{};   // one for every session: one thread reads
     uint64_t next_session_id_ = 1;
     tick_clock clock_;
     boost::asio::steady_timer tick_timer_;

@@ -1,0 +1,89 @@
+#pragma once
+// The HTTP port (--http-port): one listening socket, Boost.Beast on the server's io_context
+// thread, serving
+//   /ws                  the game over WebSocket (ws_session.hpp): one binary message per frame;
+//   /metrics, /healthz   the ops routes (server/ops/http_routes.hpp), as on --metrics-port;
+//   /, anything else     files under the web root (static_files.hpp), else 404.
+// Plain HTTP is one request per connection (Connection: close). Every connection that has not
+// become a WebSocket is bounded like the ops endpoint: its request head in size and time, at
+// most max_http_connections at once (a new one takes the slot of the oldest still sending its
+// head). An upgraded connection is the match's, whose admission counts it with TCP's.
+// Beast stays in web_transport.cpp and ws_session.cpp (it is heavy to compile).
+#include <boost/asio.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <list>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "server/net/static_files.hpp"
+#include "server/ops/accept_backoff.hpp"
+#include "server/ops/http_routes.hpp"
+
+namespace arena::net {
+
+class server;
+class ws_session;
+struct http_conn;  // web_transport.cpp
+
+struct web_options {
+    uint16_t port = 0;                          // 0: any free port
+    std::filesystem::path web_root;             // empty: no files are served
+    std::vector<std::string> allowed_origins;   // empty: any Origin (or none) may open /ws
+    size_t max_request_bytes = 8 * 1024;        // request line + headers; more gets 431
+    uint32_t max_http_connections = 64;         // not upgraded (heads being sent, answers being written)
+    int64_t write_timeout_ns = 10'000'000'000;  // an answer (a file) must be written within this
+    uint32_t max_ws_pings_per_second = 10;      // WebSocket pings (and unsolicited pongs): each costs a pong
+    uint32_t ws_ping_burst = 20;
+};
+
+class web_transport {
+public:
+    // handlers: what /metrics and /healthz answer (the ops service's).
+    web_transport(boost::asio::io_context& io, server& owner, web_options options, ops::http_handlers handlers);
+    ~web_transport();
+    web_transport(const web_transport&) = delete;
+    web_transport& operator=(const web_transport&) = delete;
+
+    // Binds the server's --bind address, prints "http listening on HOST:PORT", and serves.
+    void start();
+    uint16_t port() const { return port_; }
+
+    // For the WebSocket sessions.
+    server& owner() { return owner_; }
+    const web_options& options() const { return options_; }
+    void on_open(const std::shared_ptr<ws_session>& s);
+    void on_gone(ws_session& s);
+    uint64_t next_session_id() { return next_session_id_++; }
+
+    size_t websocket_connections() const { return sessions_.size(); }
+    uint32_t http_connections() const { return http_open_; }
+    uint64_t evicted_connections() const { return evicted_; }
+
+private:
+    boost::asio::awaitable<void> accept_loop();
+    boost::asio::awaitable<void> serve(std::shared_ptr<http_conn> conn);
+    void watch_stalls();
+    void forget_http(http_conn& c);
+    bool evict_oldest_waiting();
+
+    boost::asio::io_context& io_;
+    server& owner_;
+    web_options options_;
+    ops::http_handlers handlers_;
+    static_files files_;
+    boost::asio::ip::tcp::acceptor acceptor_;
+    ops::accept_backoff accept_backoff_;
+    boost::asio::steady_timer watchdog_;
+    uint16_t port_ = 0;
+    std::shared_ptr<bool> alive_;                               // false once destroyed: coroutines still running stop
+    std::map<uint64_t, std::shared_ptr<ws_session>> sessions_;  // upgraded, by id
+    std::list<std::shared_ptr<http_conn>> waiting_;             // still sending their head, oldest first
+    uint32_t http_open_ = 0;
+    uint64_t evicted_ = 0;
+    uint64_t next_session_id_ = 1;
+};
+
+}  // namespace arena::net

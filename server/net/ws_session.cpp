@@ -1,0 +1,263 @@
+#include "server/net/ws_session.hpp"
+
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include "protocol/verify.hpp"
+#include "server/net/log.hpp"
+#include "server/net/server.hpp"
+#include "server/net/web_transport.hpp"
+
+namespace arena::net {
+
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+using protocol::RejectCode;
+
+namespace {
+
+auto use_ec(boost::system::error_code& ec) {
+    return boost::asio::redirect_error(boost::asio::use_awaitable, ec);
+}
+
+// The largest message: one frame of the largest body a client may send, with its prefix.
+constexpr uint64_t max_message_bytes = 4 + uint64_t{protocol::max_client_frame_body};
+// Bytes per read: an Input is about 50; a larger message takes several reads.
+constexpr size_t read_chunk = 4096;
+
+}  // namespace
+
+ws_session::ws_session(beast::tcp_stream stream, web_transport& owner, uint64_t id, std::string peer)
+    : ws_(std::move(stream)),
+      owner_(owner),
+      match_(owner.owner().match()),
+      id_(id),
+      peer_(std::move(peer)),
+      wake_(ws_.get_executor()),
+      linger_(ws_.get_executor()) {}
+
+boost::asio::awaitable<void> ws_session::run(request upgrade) {
+    auto self = shared_from_this();
+    const server_options& o = owner_.owner().options();
+    // Beast's own deadlines from here (the stream's expiry must be off for them): the 101 and
+    // the closing handshake within the handshake timeout; no idle timeout or keep-alive pings
+    // of its own: the match's idle timeout and Pings do that, in the protocol.
+    beast::get_lowest_layer(ws_).expires_never();
+    websocket::stream_base::timeout timeouts{};
+    timeouts.handshake_timeout = std::chrono::nanoseconds(std::min(o.handshake_timeout_ns, o.close_grace_ns));
+    timeouts.idle_timeout = websocket::stream_base::none();
+    timeouts.keep_alive_pings = false;
+    ws_.set_option(timeouts);
+    // permessage-deflate off: a small compressed message could inflate far beyond the limit.
+    websocket::permessage_deflate deflate;
+    deflate.server_enable = false;
+    deflate.client_enable = false;
+    ws_.set_option(deflate);
+    ws_.set_option(websocket::stream_base::decorator(
+        [](websocket::response_type& response) { response.set(beast::http::field::server, "arena-server"); }));
+    ws_.read_message_max(max_message_bytes);
+    ws_.auto_fragment(false);
+    ws_.binary(true);
+    ws_.control_callback([this](websocket::frame_type kind, beast::string_view) {
+        if (kind == websocket::frame_type::close || ping_refused_ || closing_) return;
+        // Each ping costs a pong written back: bounded like the protocol's own Pings.
+        const web_options& w = owner_.options();
+        if (pings_.take(owner_.owner().now_ns(), w.max_ws_pings_per_second, w.ws_ping_burst)) return;
+        ping_refused_ = true;
+        reject_later({RejectCode::ping_limit,
+                      "more than " + std::to_string(w.max_ws_pings_per_second) + " WebSocket pings a second"});
+    });
+
+    boost::system::error_code ec;
+    co_await ws_.async_accept(upgrade, use_ec(ec));
+    if (ec) {
+        log_line("ws: %s: upgrade not completed: %s", peer_.c_str(), ec.message().c_str());
+        beast::get_lowest_layer(ws_).socket().close(ec);
+        co_return;
+    }
+    opened_ = true;
+    owner_.on_open(self);
+    boost::asio::co_spawn(ws_.get_executor(), writer(), [self](std::exception_ptr) {});
+    match_.connect(*this);  // after the writer started, so that a refused client reads why
+    co_await reader();
+}
+
+boost::asio::awaitable<void> ws_session::reader() {
+    std::array<uint8_t, read_chunk> chunk{};
+    while (!closing_) {
+        boost::system::error_code ec;
+        const size_t n = co_await ws_.async_read_some(boost::asio::buffer(chunk), use_ec(ec));
+        if (closing_) co_return;
+        if (ec == websocket::error::message_too_big) {
+            // Beast refused the frame by its header, before buffering it, and answered with the
+            // close code 1009; the Reject below may not get through, the log line does.
+            match_.reject(*this, {RejectCode::too_large,
+                                  "a WebSocket message over " + std::to_string(max_message_bytes) + " bytes"});
+            co_return;
+        }
+        if (ec) {
+            using kind = match::close_cause::kind;
+            const bool closed =
+                ec == websocket::error::closed || ec == boost::asio::error::eof || ec == beast::error::timeout;
+            const kind what = !closed ? kind::socket_error
+                                      : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
+            match_.disconnect(*this, {what, {}, closed ? std::string() : ec.message()});
+            close_now();
+            co_return;
+        }
+        if (!ws_.got_binary()) {
+            match_.reject(*this, {RejectCode::bad_request, "a text message: the protocol is binary frames"});
+            co_return;
+        }
+        owner_.owner().count_in(n);
+        if (!take({chunk.data(), n}, ws_.is_message_done())) co_return;
+    }
+}
+
+bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
+    while (!data.empty() && !closing_) {
+        if (frame_in_message_) {
+            match_.reject(*this, {RejectCode::bad_request, "a WebSocket message holds more than one frame"});
+            return false;
+        }
+        data = data.subspan(reader_.feed(data));
+        if (reader_.failed()) {
+            match_.reject(*this, match::admission::unreadable(reader_));
+            return false;
+        }
+        if (!reader_.has_frame()) break;  // the rest of the frame is in the message's next bytes
+        frame_in_message_ = true;
+        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
+        if (!verified) {
+            match_.reject(*this, match::admission::unverified(verified.error));
+            return false;
+        }
+        owner_.owner().count_message_in();
+        const bool go_on = match_.receive(*this, *verified.value, owner_.owner().now_ns());
+        reader_.next();
+        if (!go_on) {
+            close_after({});  // a Bye from the client; after a refusal this changes nothing
+            return false;
+        }
+    }
+    if (closing_) return false;
+    if (message_done) {
+        if (!frame_in_message_) {
+            match_.reject(*this, {RejectCode::bad_request, reader_.buffered() == 0
+                                                               ? std::string("an empty WebSocket message")
+                                                               : "a WebSocket message ends inside a frame, after " +
+                                                                     std::to_string(reader_.buffered()) + " bytes"});
+            return false;
+        }
+        frame_in_message_ = false;
+    }
+    return true;
+}
+
+boost::asio::awaitable<void> ws_session::writer() {
+    boost::system::error_code ec;
+    while (!closed_) {
+        if (!control_.empty()) {
+            protocol::frame_bytes frame = std::move(control_.front());
+            control_.pop_front();
+            if (frame.empty()) continue;
+            co_await ws_.async_write(boost::asio::buffer(frame), use_ec(ec));
+            if (!ec) owner_.owner().count_out(frame.size());
+        } else if (snapshot_pending_) {
+            std::swap(snapshot_next_, snapshot_writing_);
+            snapshot_pending_ = false;
+            co_await ws_.async_write(boost::asio::buffer(snapshot_writing_), use_ec(ec));
+            if (!ec) owner_.owner().count_out(snapshot_writing_.size());
+        } else if (closing_) {
+            // The last word is out: the closing handshake, bounded by the handshake timeout
+            // (and the linger timer).
+            co_await ws_.async_close(websocket::close_code::normal, use_ec(ec));
+            close_now();
+            co_return;
+        } else {
+            waiting_since_ns_ = 0;
+            wake_.expires_at(boost::asio::steady_timer::time_point::max());
+            co_await wake_.async_wait(use_ec(ec));
+            ec = {};
+            continue;
+        }
+        if (ec) {
+            if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
+            close_now();
+            co_return;
+        }
+        waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.owner().now_ns();
+    }
+}
+
+void ws_session::reject_later(match::rejection why) {
+    // Not from inside Beast's read (or a call the match made): the refusal goes through the match.
+    boost::asio::post(ws_.get_executor(), [self = shared_from_this(), why = std::move(why)] {
+        if (!self->closing_) self->match_.reject(*self, why);
+    });
+}
+
+void ws_session::send(protocol::frame_bytes frame) {
+    if (closing_) return;
+    if (control_.size() >= owner_.owner().options().max_control_frames) {
+        reject_later({RejectCode::slow_consumer, "too many messages waiting to be sent"});
+        return;
+    }
+    control_.push_back(std::move(frame));
+    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.owner().now_ns();
+    wake_.cancel();
+}
+
+void ws_session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
+    if (closing_) return;
+    snapshot.copy_with_ack(ack_sequence, snapshot_next_);
+    snapshot_queued();
+}
+
+void ws_session::send_snapshot_frame(std::span<const uint8_t> frame) {
+    if (closing_) return;
+    snapshot_next_.assign(frame.begin(), frame.end());
+    snapshot_queued();
+}
+
+void ws_session::snapshot_queued() {
+    snapshot_pending_ = true;
+    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.owner().now_ns();
+    wake_.cancel();
+}
+
+void ws_session::close(RejectCode code, std::string_view reason) {
+    close_after(protocol::encode_reject(code, reason));
+}
+
+void ws_session::close_with_bye(std::string_view reason) {
+    close_after(protocol::encode_bye(reason));
+}
+
+void ws_session::close_after(protocol::frame_bytes last_frame) {
+    if (closing_) return;
+    closing_ = true;
+    control_.clear();
+    snapshot_pending_ = false;
+    control_.push_back(std::move(last_frame));
+    wake_.cancel();
+    linger_.expires_after(std::chrono::nanoseconds(owner_.owner().options().close_grace_ns));
+    linger_.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+        if (!e) self->close_now();
+    });
+}
+
+void ws_session::close_now() {
+    if (closed_) return;
+    closed_ = true;
+    closing_ = true;
+    boost::system::error_code ec;
+    auto& socket = beast::get_lowest_layer(ws_).socket();
+    socket.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ec);
+    socket.close(ec);
+    wake_.cancel();
+    linger_.cancel();
+    if (opened_) owner_.on_gone(*this);
+}
+
+}  // namespace arena::net
