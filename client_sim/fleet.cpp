@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "client_sim/udp_bot.hpp"
+#include "client_sim/ws_bot.hpp"
 
 namespace arena::bots {
 
@@ -51,6 +52,8 @@ fleet::fleet(boost::asio::io_context& io, options opts)
         if (opts_.transport == transport_kind::udp)
             bots_.push_back(std::make_unique<udp_bot>(
                 *this, std::move(params), simulated_delay{opts_.simulate_latency_ms, opts_.simulate_jitter_ms}));
+        else if (opts_.transport == transport_kind::ws)
+            bots_.push_back(std::make_unique<ws_bot>(*this, std::move(params)));
         else
             bots_.push_back(std::make_unique<bot>(*this, std::move(params)));
     }

@@ -48,8 +48,10 @@ int parse_options(int argc, char** argv, options& out) {
                  "ask for full BodyState snapshots instead of deltas (no Hello.delta_snapshots)");
 
     std::string transport_name = "tcp";
-    app.add_option("--transport", transport_name, "tcp, or udp (ENet; --port is then the server's --udp-port)")
-        ->check(CLI::IsMember({"tcp", "udp"}))
+    app.add_option("--transport", transport_name,
+                   "tcp, udp (ENet; --port is then the server's --udp-port) or ws (WebSocket to ws://HOST:PORT/ws; "
+                   "--port is then the server's --http-port)")
+        ->check(CLI::IsMember({"tcp", "udp", "ws"}))
         ->capture_default_str();
     app.add_option("--simulate-latency", out.simulate_latency_ms,
                    "ms added to every message each way on the bot's side (with --transport udp)")
@@ -59,8 +61,10 @@ int parse_options(int argc, char** argv, options& out) {
         ->check(CLI::Range(0.0, 10000.0));
 
     if (const int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
-    out.transport = transport_name == "udp" ? transport_kind::udp : transport_kind::tcp;
-    if (out.transport == transport_kind::tcp && (out.simulate_latency_ms > 0 || out.simulate_jitter_ms > 0)) {
+    out.transport = transport_name == "udp"  ? transport_kind::udp
+                    : transport_name == "ws" ? transport_kind::ws
+                                             : transport_kind::tcp;
+    if (out.transport != transport_kind::udp && (out.simulate_latency_ms > 0 || out.simulate_jitter_ms > 0)) {
         std::fprintf(
             stderr,
             "arena-bots: --simulate-latency and --simulate-jitter delay datagrams: they need --transport udp\n");

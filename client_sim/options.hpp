@@ -10,7 +10,7 @@
 
 namespace arena::bots {
 
-enum class transport_kind : std::uint8_t { tcp, udp };
+enum class transport_kind : std::uint8_t { tcp, udp, ws };
 
 struct options {
     std::string host = "127.0.0.1";
@@ -31,7 +31,7 @@ struct options {
     bool quiet = false;                              // no progress lines
     double join_timeout = 10;                        // s from launch to Welcome before a bot gives up
     bool full_snapshots = false;                     // do not ask for delta snapshots (the simple client's path)
-    transport_kind transport = transport_kind::tcp;  // udp: ENet, to a server's --udp-port
+    transport_kind transport = transport_kind::tcp;  // udp: ENet, to a server's --udp-port; ws: its --http-port /ws
     double simulate_latency_ms = 0;                  // udp: added each way on the bot's side
     double simulate_jitter_ms = 0;                   // udp: ± uniform around it
 };
