@@ -86,7 +86,7 @@ TEST_CASE("WebSocket bots play a short match beside TCP bots at the snapshot rat
     CHECK(log.find("name=tcp-0") != std::string::npos);
 }
 
-TEST_CASE("a WebSocket bot sending garbage is rejected alone; the others play on", "[e2e][ws]") {
+TEST_CASE("a WebSocket bot sending garbage is rejected alone, and the others play on", "[e2e][ws]") {
     temp_dir dir;
     ws_server s(dir);
     const json j = run_bots(dir, "mixed", s.http_port,
