@@ -89,9 +89,9 @@ TEST_CASE("WebSocket bots play a short match beside TCP bots at the snapshot rat
 TEST_CASE("a WebSocket bot sending garbage is rejected alone, and the others play on", "[e2e][ws]") {
     temp_dir dir;
     ws_server s(dir);
-    const json j = run_bots(dir, "mixed", s.http_port,
-                            {"--transport", "ws", "--bots", "4", "--duration", "3", "--misbehave", "garbage",
-                             "--misbehave-share", "0.25"});
+    const json j = run_bots(
+        dir, "mixed", s.http_port,
+        {"--transport", "ws", "--bots", "4", "--duration", "3", "--misbehave", "garbage", "--misbehave-share", "0.25"});
     CHECK(j.at("joined") == 4);
     CHECK(j.at("misbehaving_dropped") == 1);
     CHECK(figure(j, "snapshots_per_s_per_bot", "p50") == Approx(20.0).margin(1.0));

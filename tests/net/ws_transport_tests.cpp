@@ -1,6 +1,11 @@
 // arena-server's HTTP port (--http-port) end to end over loopback: the game over WebSocket at
 // /ws beside TCP (server/net/web_transport.*, ws_session.*), the same admission and Reject codes
 // as TCP, WebSocket's own abuse, the ops routes and the static files on the same port.
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -265,4 +270,37 @@ TEST_CASE("the HTTP port serves files under --web-root only, with their content 
     CHECK(get("/ws").find("HTTP/1.1 426") == 0);
     std::filesystem::remove_all(root);
     std::filesystem::remove(outside);
+}
+
+TEST_CASE("at shutdown a WebSocket client reads its Bye, and the server waits for it", "[net][ws]") {
+    http_server s({});
+    ws_client c(s.http_port);
+    join(c);
+    REQUIRE(::kill(s.process.pid(), SIGTERM) == 0);
+    auto bye = c.read_until(Payload::Bye, 3000ms);
+    REQUIRE(bye);
+    auto b = protocol::decode_bye(*message_of(*bye));
+    REQUIRE(b);
+    CHECK(b.value.reason.find("SIGTERM") != std::string::npos);
+    CHECK(c.closed_by_peer());
+    CHECK(s.process.stop(SIGTERM) == 0);
+}
+
+TEST_CASE("idle HTTP connections cannot keep /healthz or a WebSocket player out", "[net][ws][http]") {
+    http_server s({});
+    std::vector<int> idle;
+    for (int i = 0; i < 80; ++i) {
+        const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(s.http_port);
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        REQUIRE(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0);
+        idle.push_back(fd);
+    }
+    std::this_thread::sleep_for(100ms);
+    CHECK(raw_http(s.http_port, "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n").find("HTTP/1.1 200") == 0);
+    ws_client c(s.http_port);
+    join(c);
+    for (int fd : idle) ::close(fd);
 }
