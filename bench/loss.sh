@@ -5,7 +5,8 @@
 # kernels). Latency is added on the bots' side (arena-bots --simulate-latency, UDP only: a TCP
 # socket cannot be delayed from user space without reordering its bytes). One table.
 # Env: LOSS_PERCENT ("0 1 2 5 10"), LOSS_LATENCY_MS ("0 50 100"), LOSS_SECONDS (8),
-#      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp"), LOSS_WORK (a folder that keeps each run's
+#      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp udp2"; udp2 is UDP with each snapshot sent
+#      twice, a tick apart: --udp-snapshot-copies 2), LOSS_WORK (a folder that keeps each run's
 #      bots' --json LABEL.json and server's --stats-json LABEL.stats.json, LABEL being
 #      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed).
 set -euo pipefail
@@ -15,7 +16,7 @@ losses=${LOSS_PERCENT:-0 1 2 5 10}
 latencies=${LOSS_LATENCY_MS:-0 50 100}
 seconds=${LOSS_SECONDS:-8}
 bots=${LOSS_BOTS:-16}
-transports=${LOSS_TRANSPORTS:-tcp udp}
+transports=${LOSS_TRANSPORTS:-tcp udp udp2}
 [ "$(id -u)" = 0 ] || { echo "bench-loss: needs root (ip netns, nft)" >&2; exit 1; }
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
 keep=${LOSS_WORK:-}
@@ -27,6 +28,8 @@ trap cleanup EXIT
 # run TRANSPORT LOSS_PERMILLE LATENCY_MS LABEL: one server and its bots in a fresh namespace.
 run() {
   local transport=$1 permille=$2 latency=$3 label=$4
+  local -a copies=()
+  if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
   ip netns del "$ns" 2>/dev/null || true
   ip netns add "$ns"
   ip netns exec "$ns" ip link set lo up
@@ -37,7 +40,7 @@ run() {
   fi
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$ns" "$bin/arena-server" --port 0 --udp-port 0 --max-players "$bots" --duration $((seconds + 30)) \
-    --stats-json "$work/$label.stats.json" > "$work/$label.out" 2> "$work/$label.log" &
+    "${copies[@]}" --stats-json "$work/$label.stats.json" > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   local prefix="listening on"; [ "$transport" = udp ] && prefix="udp listening on"
   for _ in $(seq 100); do

@@ -45,6 +45,11 @@ int main(int argc, char** argv) {
     app.add_option("--allowed-origin", web.allowed_origins,
                    "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
                    "repeatable (default: any)");
+    uint32_t udp_snapshot_copies = 1;
+    app.add_option("--udp-snapshot-copies", udp_snapshot_copies,
+                   "send each UDP snapshot this many times, a tick apart: a lost one is replaced by its copy, "
+                   "for that many times the downstream bytes (default 1: no copy)")
+        ->check(CLI::Range(1, 3));
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
     app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
@@ -196,7 +201,9 @@ int main(int argc, char** argv) {
         server.start();
         std::optional<net::udp_transport> udp;
         if (udp_port >= 0) {
-            udp.emplace(io, server, net::udp_options{.port = static_cast<uint16_t>(udp_port)});
+            udp.emplace(
+                io, server,
+                net::udp_options{.port = static_cast<uint16_t>(udp_port), .snapshot_copies = udp_snapshot_copies});
             udp->start();  // prints "udp listening on HOST:PORT" after the TCP line
         }
         std::optional<net::web_transport> http;

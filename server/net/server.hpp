@@ -71,6 +71,7 @@ public:
     void count_peer_opened();
     void count_peer_closed();
     void count_fragmented_snapshot() { ++process_.snapshots_fragmented; }
+    void count_snapshot_copy() { ++process_.snapshot_copies; }
     // From the other transports (WebSocket): a connection handed to the match opened, or is
     // gone. Counted with the TCP sessions (connections_open, the peak), and shutdown waits for it.
     void transport_opened();

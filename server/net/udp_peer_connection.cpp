@@ -90,10 +90,25 @@ void udp_peer_connection::send_snapshot_bytes(std::span<const uint8_t> bytes) {
     // snapshots of a crowded view) is counted.
     if (bytes.size() <= owner_.snapshot_budget()) {
         send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNSEQUENCED);
+        // Its copies a tick apart (never at once: a burst of loss would take them together).
+        // A newer snapshot replaces the copies of an older one; the client drops duplicates.
+        copies_left_ = owner_.snapshot_copies() > 1 ? owner_.snapshot_copies() - 1 : 0;
+        if (copies_left_ > 0) {
+            copy_.assign(bytes.begin(), bytes.end());
+            copy_due_ns_ = owner_.now_ns() + owner_.tick_ns();
+        }
     } else {
         owner_.count_fragmented_snapshot();
         send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNRELIABLE_FRAGMENT);
     }
+}
+
+void udp_peer_connection::send_due_copy(int64_t now_ns) {
+    if (copies_left_ == 0 || closing_ || now_ns < copy_due_ns_) return;
+    --copies_left_;
+    copy_due_ns_ = now_ns + owner_.tick_ns();
+    owner_.count_snapshot_copy();
+    send_packet(copy_, channel_datagrams, ENET_PACKET_FLAG_UNSEQUENCED);
 }
 
 void udp_peer_connection::close(protocol::RejectCode code, std::string_view reason) {

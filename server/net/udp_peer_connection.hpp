@@ -44,6 +44,8 @@ public:
     int64_t closing_since_ns() const { return closing_since_ns_; }
     uint64_t id() const { return id_; }
     ENetPeer* enet_peer() const { return peer_; }
+    // Sends the pending copy of the last snapshot when its time came (udp_options::snapshot_copies).
+    void send_due_copy(int64_t now_ns);
     // ENet reset the peer (it is gone): nothing may be sent any more.
     void forget_peer() { peer_ = nullptr; }
 
@@ -58,6 +60,9 @@ private:
     std::string peer_text_;
     protocol::frame_reader reader_;  // aligned storage for one datagram's frame
     std::vector<uint8_t> snapshot_;  // send_snapshot's copy with the ack patched in
+    std::vector<uint8_t> copy_;      // the last snapshot datagram, to send again
+    uint32_t copies_left_ = 0;       // times it is still to go
+    int64_t copy_due_ns_ = 0;        // not before
     bool closing_ = false;
     int64_t closing_since_ns_ = 0;
 };

@@ -64,6 +64,16 @@ void udp_transport::count_message_in() {
     owner_.count_message_in();
 }
 
+int64_t udp_transport::tick_ns() const {
+    return 1'000'000'000 / std::max<int64_t>(1, owner_.options().match.tick_rate);
+}
+
+void udp_transport::send_due_copies() {
+    if (options_.snapshot_copies <= 1) return;
+    const int64_t now = now_ns();
+    for (auto& [id, c] : connections_) c->send_due_copy(now);
+}
+
 void udp_transport::start() {
     ENetAddress address{};
     const std::string& bind = owner_.options().bind;
@@ -83,8 +93,8 @@ void udp_transport::start() {
     readable_.assign(fd);
     std::printf("udp listening on %s:%u\n", bind.c_str(), port_);
     std::fflush(stdout);
-    log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram", bind.c_str(), port_, peers,
-             options_.snapshot_budget);
+    log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
+             bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
     wait_readable();
     arm_timer();
 }
@@ -92,6 +102,7 @@ void udp_transport::start() {
 void udp_transport::wait_readable() {
     readable_.async_wait(boost::asio::posix::stream_descriptor::wait_read, [this](const boost::system::error_code& ec) {
         if (ec || stopped_) return;
+        send_due_copies();
         service();
         wait_readable();
     });
@@ -112,7 +123,9 @@ void udp_transport::flush_soon() {
     flush_posted_ = true;
     boost::asio::post(io_, [this] {
         flush_posted_ = false;
-        if (!stopped_ && host_ != nullptr) enet_host_flush(host_);
+        if (stopped_ || host_ == nullptr) return;
+        send_due_copies();
+        enet_host_flush(host_);
     });
 }
 
@@ -187,6 +200,10 @@ std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator udp_transport
 
 void udp_transport::count_fragmented_snapshot() {
     owner_.count_fragmented_snapshot();
+}
+
+void udp_transport::count_snapshot_copy() {
+    owner_.count_snapshot_copy();
 }
 
 void udp_transport::reap_closing() {

@@ -23,6 +23,9 @@ void report(const process_counters& c, match::figure_sink& out) {
     out.counter({"snapshots_fragmented", "arena_snapshots_fragmented_total",
                  "UDP snapshots larger than a datagram, sent as ENet fragments (BodyState views)."},
                 c.snapshots_fragmented);
+    out.counter({"snapshot_copies", "arena_snapshot_copies_total",
+                 "UDP snapshot datagrams sent again, a tick after the first (--udp-snapshot-copies)."},
+                c.snapshot_copies);
 }
 
 }  // namespace arena::ops

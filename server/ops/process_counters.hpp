@@ -28,6 +28,7 @@ struct process_counters {
     uint64_t messages_out = 0;          // frames written
     uint64_t tick_overruns = 0;         // ticks dropped because the loop fell behind
     uint64_t snapshots_fragmented = 0;  // UDP snapshots over the datagram budget, sent as fragments
+    uint64_t snapshot_copies = 0;       // UDP snapshot datagrams sent again (--udp-snapshot-copies)
     stats_window window;                // filled for the stats log line only
 };
 

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <functional>
+#include <map>
 #include <random>
 #include <thread>
 
@@ -115,6 +116,48 @@ TEST_CASE("UDP peers count as connections like TCP ones: the stats line's connec
     c.send_reliable(protocol::encode_bye("done"));
     c.pump(500ms);
     CHECK(stats_line_after(server.process.log().size(), "connections=1\n"));
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
+// Snapshot ticks received in `duration` while sending an input per tick, and how often each.
+std::map<uint32_t, int> snapshot_ticks(udp_client& c, std::chrono::milliseconds duration) {
+    std::map<uint32_t, int> seen;
+    play(c, duration, 1, {});  // warm up: the first snapshots may come before the copies start
+    const auto start = std::chrono::steady_clock::now();
+    uint32_t sequence = 1000;
+    while (std::chrono::steady_clock::now() - start < duration) {
+        c.send_unreliable(protocol::encode_input({sequence++, 0.0f, 0.0f, 0}));
+        const auto next = std::chrono::steady_clock::now() + 16667us;
+        while (std::chrono::steady_clock::now() < next) {
+            auto frame = c.read_frame(2ms);
+            if (!frame) continue;
+            const protocol::Message* m = message_of(*frame);
+            if (m == nullptr || m->payload_type() != Payload::Snapshot) continue;
+            auto s = protocol::decode_snapshot(*m);
+            REQUIRE(s);
+            ++seen[s.value.tick];
+        }
+    }
+    return seen;
+}
+
+TEST_CASE("each UDP snapshot goes twice with --udp-snapshot-copies 2, once by default", "[net][udp]") {
+    const int copies = GENERATE(1, 2);
+    udp_server server(copies == 2 ? std::vector<std::string>{"--udp-snapshot-copies", "2"}
+                                  : std::vector<std::string>{});
+    udp_client c(server.udp_port);
+    join(c);
+    const std::map<uint32_t, int> seen = snapshot_ticks(c, 1000ms);
+    REQUIRE(seen.size() >= 10);
+    int twice = 0;
+    for (const auto& [tick, n] : seen) {
+        CHECK(n <= copies);
+        twice += n == 2 ? 1 : 0;
+    }
+    // Loopback loses nothing: every snapshot came `copies` times, but perhaps the first (its
+    // other copy read while warming up) and the last (its copy still to come).
+    if (copies == 2) CHECK(twice + 2 >= static_cast<int>(seen.size()));
+    if (copies == 1) CHECK(twice == 0);
     CHECK(server.process.stop(SIGTERM) == 0);
 }
 
