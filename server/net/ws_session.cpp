@@ -39,6 +39,13 @@ ws_session::ws_session(beast::tcp_stream stream, web_transport& owner, uint64_t 
 boost::asio::awaitable<void> ws_session::run(request upgrade) {
     auto self = shared_from_this();
     const server_options& o = owner_.owner().options();
+    // As a TCP session's socket: no Nagle delay for a snapshot behind a small frame, and the
+    // kernel's send buffer bounded (--socket-send-buffer), so that a client that does not read
+    // shows as a stall instead of megabytes held for it.
+    boost::system::error_code option_ec;
+    auto& socket = beast::get_lowest_layer(ws_).socket();
+    socket.set_option(boost::asio::ip::tcp::no_delay(true), option_ec);
+    socket.set_option(boost::asio::socket_base::send_buffer_size(o.socket_send_buffer), option_ec);
     // Beast's own deadlines from here (the stream's expiry must be off for them): the 101 and
     // the closing handshake within the handshake timeout; no idle timeout or keep-alive pings
     // of its own: the match's idle timeout and Pings do that, in the protocol.

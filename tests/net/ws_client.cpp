@@ -39,9 +39,14 @@ struct ws_client::impl {
     }
 };
 
-ws_client::ws_client(uint16_t port, const std::string& origin, const std::string& target)
+ws_client::ws_client(uint16_t port, const std::string& origin, const std::string& target, int receive_buffer)
     : impl_(std::make_unique<impl>()) {
     boost::system::error_code ec;
+    if (receive_buffer > 0) {
+        // Before connecting, when TCP negotiates its window.
+        impl_->ws.next_layer().open(tcp::v4(), ec);
+        impl_->ws.next_layer().set_option(boost::asio::socket_base::receive_buffer_size(receive_buffer), ec);
+    }
     impl_->ws.next_layer().connect(tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), port), ec);
     if (ec) return;
     impl_->ws.set_option(websocket::stream_base::decorator([origin](websocket::request_type& request) {

@@ -15,8 +15,10 @@ namespace arena::test {
 
 class ws_client {
 public:
-    // Connects to 127.0.0.1:port and upgrades `target`, with an Origin header unless empty.
-    explicit ws_client(uint16_t port, const std::string& origin = "", const std::string& target = "/ws");
+    // Connects to 127.0.0.1:port and upgrades `target`, with an Origin header unless empty;
+    // receive_buffer > 0 shrinks the socket's receive buffer (a client that fills up fast).
+    explicit ws_client(uint16_t port, const std::string& origin = "", const std::string& target = "/ws",
+                       int receive_buffer = 0);
     ~ws_client();
     ws_client(const ws_client&) = delete;
     ws_client& operator=(const ws_client&) = delete;

@@ -304,3 +304,21 @@ TEST_CASE("idle HTTP connections cannot keep /healthz or a WebSocket player out"
     join(c);
     for (int fd : idle) ::close(fd);
 }
+
+TEST_CASE("a WebSocket client that never reads is dropped as slow_consumer, and the others play on", "[net][ws]") {
+    // As the TCP test: 1000 rocks make each whole-world snapshot about 32 KB; a 4 KiB receive
+    // buffer on the sleeper and 64 KiB of send buffer on the server fill within a second.
+    const auto config =
+        std::filesystem::temp_directory_path() / ("arena-ws-big-" + std::to_string(::getpid()) + ".json");
+    std::ofstream(config) << R"({"preset": "asteroids", "size": [2000, 2000], "rocks": {"count": 1000}})";
+    http_server s(
+        {"--config", config.string(), "--stall-timeout", "1", "--socket-send-buffer", "65536", "--view-radius", "0"});
+    ws_client good(s.http_port);
+    join(good, "good");
+    ws_client sleeper(s.http_port, "", "/ws", 4096);
+    join(sleeper, "sleeper");  // and never reads again
+    CHECK(snapshots_within(good, 3000ms) >= 50);
+    CHECK(s.process.log_shows("code=slow_consumer reason=no progress writing to the client"));
+    CHECK(snapshots_within(good, 1000ms) >= 18);
+    std::filesystem::remove(config);
+}
