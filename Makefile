@@ -16,14 +16,18 @@ endif
 # may skip for want of a tool. libboost1.81-dev: Boost.Asio and Beast (only 1.81: it conflicts
 # with 1.74); libenet-dev: the UDP transport; g++-aarch64-linux-gnu and qemu-user-static: the
 # aarch64 replay check; ccache: rebuilds in CI and in the determinism check; nftables, iproute2
-# and python3: the short bench-loss test (tests/e2e/loss_smoke.sh).
+# and python3: the short bench-loss test (tests/e2e/loss_smoke.sh); emscripten (its JavaScript
+# needs node-acorn) and nodejs: the browser SDK's WebAssembly core and its tests (web/sdk/);
+# chromium: the browser tests of the page.
 PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libflatbuffers-dev \
   flatbuffers-compiler libeigen3-dev catch2 libcli11-dev nlohmann-json3-dev clang-14 \
   libclang-rt-14-dev clang-format-14 libsodium-dev procps prometheus ccache \
-  g++-aarch64-linux-gnu qemu-user-static libenet-dev nftables iproute2 python3
-# npm runs the Dockerfile linters. Debian's nodejs brings it along with npm; but where node
-# already came from elsewhere with npm inside, installing Debian's npm over it fails (held
-# packages), so these are installed only when there is no `npm` command.
+  g++-aarch64-linux-gnu qemu-user-static libenet-dev nftables iproute2 python3 \
+  emscripten node-acorn nodejs chromium
+# npm runs the Dockerfile linters and installs the SDK's TypeScript tools (web/sdk/package-lock.json).
+# Debian's nodejs comes without npm, so npm is a package of its own; but where node already
+# came from elsewhere with npm inside, installing Debian's npm over it fails (held packages),
+# so these are installed only when there is no `npm` command.
 NPM_PACKAGES := nodejs npm
 
 .PHONY: all deps build run test test-fast bench bench-deps bench-e2e bench-loss clean fuzz lint-docker format format-check
@@ -59,7 +63,7 @@ SANITIZER_EXCLUDED_TESTS := ^(out of descriptors the accept loop|ops http: out o
 # determinism check. The Dockerfile is linted first: no Docker engine runs here to build it.
 test: build format-check lint-docker
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
-	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_SDK=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600 -E '$(SANITIZER_EXCLUDED_TESTS)'
 	./scripts/determinism-check.sh $(BUILD)
@@ -79,7 +83,7 @@ FUZZ_SECONDS ?= 15
 endif
 fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DARENA_FUZZ=ON -DARENA_SANITIZE=ON -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
+	  -DARENA_FUZZ=ON -DARENA_SANITIZE=ON -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_SDK=OFF $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$t $(FUZZ_BUILD)/crashes; \

@@ -54,7 +54,7 @@ build_replay() {
   local target=(-DCMAKE_CXX_COMPILER="$compiler")
   [[ $compiler == aarch64 ]] && target=(-DCMAKE_TOOLCHAIN_FILE="$toolchain")
   if ! cmake -S "$root" -B "$dir" -G Ninja "${target[@]}" -DCMAKE_BUILD_TYPE="$type" "${launcher[@]}" \
-      -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_TESTS=OFF "$@" >"$log" 2>&1; then
+      -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_TESTS=OFF -DARENA_BUILD_SDK=OFF "$@" >"$log" 2>&1; then
     cat "$log" >&2
     return 1
   fi

@@ -1,0 +1,282 @@
+// The C API the TypeScript SDK calls (web/sdk/src/core.ts): a session (session.hpp) and the
+// replay of a recording. Plain extern "C" functions over integers, floats and pointers into the
+// module's memory, so that the JavaScript side needs no binding library: it copies a frame in,
+// calls, and reads the answer where the returned pointer says. Pointers stay valid until the
+// next call on the same handle.
+#include <cinttypes>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "server/replay/replayer.hpp"
+#include "web/sdk/core/session.hpp"
+
+#ifdef __EMSCRIPTEN__
+#include <emscripten/emscripten.h>
+#define ARENA_API extern "C" EMSCRIPTEN_KEEPALIVE
+#else
+#define ARENA_API extern "C" __attribute__((visibility("default")))
+#endif
+
+namespace {
+
+// A shape as the SDK reads it: 76 bytes, every field at a 4-byte offset.
+struct sdk_shape {
+    std::uint32_t id;
+    std::uint8_t kind;
+    std::uint8_t type;  // protocol ShapeType
+    std::uint8_t vertex_count;
+    std::uint8_t unused;
+    float radius;
+    float xy[2 * arena::protocol::max_shape_vertices];
+};
+static_assert(sizeof(sdk_shape) == 76);
+
+// A static body of the Welcome: its pose, then its shape. 88 bytes.
+struct sdk_static {
+    float x, y, angle;
+    sdk_shape shape;
+};
+static_assert(sizeof(sdk_static) == 88);
+
+sdk_shape to_sdk(const arena::protocol::shape_desc& d) {
+    sdk_shape s{};
+    s.id = d.id;
+    s.kind = d.kind;
+    s.type = static_cast<std::uint8_t>(d.type);
+    s.vertex_count = d.vertex_count;
+    s.radius = d.radius;
+    std::memcpy(s.xy, d.xy.data(), sizeof(s.xy));
+    return s;
+}
+
+struct client {
+    arena::sdk::session session;
+    std::vector<sdk_shape> shapes;
+    std::vector<sdk_static> statics;
+    float predicted[6] = {};
+    explicit client(bool delta) : session(delta) {}
+};
+
+struct replay {
+    std::unique_ptr<arena::replay::replayer> replayer;
+    arena::replay::replay_report report;
+    std::string dump;  // "tick,hash" lines, as arena-replay --dump-hashes prints them
+    std::vector<arena::protocol::BodyState> bodies;
+    std::string error;
+    std::string final_hash;
+};
+
+std::string open_error;  // why the last arena_replay_open failed
+
+std::uint32_t out_size(std::span<const std::uint8_t> frame) {
+    return static_cast<std::uint32_t>(frame.size());
+}
+
+}  // namespace
+
+// --- session ------------------------------------------------------------------------------
+
+ARENA_API client* arena_session_new(int delta_snapshots) {
+    return new client(delta_snapshots != 0);
+}
+ARENA_API void arena_session_free(client* c) {
+    delete c;
+}
+
+// One frame from the server: the payload type handled (protocol Payload), 0 when refused (the
+// session ended: arena_error says why; a Reject or Bye also ends it, with its reason).
+ARENA_API int arena_feed(client* c, const std::uint8_t* data, std::uint32_t size) {
+    const auto type = c->session.feed({data, size});
+    if (type == arena::protocol::Payload::Welcome) {
+        c->statics.clear();
+        for (const auto& s : c->session.statics()) c->statics.push_back({s.x, s.y, s.angle, to_sdk(s.shape)});
+    } else if (type == arena::protocol::Payload::Snapshot) {
+        c->shapes.clear();
+        for (const auto& d : c->session.shapes()) c->shapes.push_back(to_sdk(d));
+    }
+    return static_cast<int>(type);
+}
+ARENA_API int arena_ended(const client* c) {
+    return c->session.ended() ? 1 : 0;
+}
+ARENA_API const char* arena_error(const client* c) {
+    return c->session.error().c_str();
+}
+
+// Outgoing frames: each call returns the frame's size; arena_out points at it.
+ARENA_API std::uint32_t arena_hello(client* c, const char* name, const char* token) {
+    return out_size(c->session.hello(name, token));
+}
+ARENA_API std::uint32_t arena_input(client* c, float thrust, float turn, int buttons) {
+    return out_size(c->session.input(thrust, turn, static_cast<std::uint8_t>(buttons)));
+}
+// client_time: an integer below 2^53 (JavaScript numbers are doubles).
+ARENA_API std::uint32_t arena_ping(client* c, double client_time) {
+    return out_size(c->session.ping(static_cast<std::uint64_t>(client_time)));
+}
+ARENA_API std::uint32_t arena_bye(client* c, const char* reason) {
+    return out_size(c->session.bye(reason));
+}
+ARENA_API const std::uint8_t* arena_out(const client* c) {
+    return c->session.out().data();
+}
+
+ARENA_API std::uint32_t arena_player_id(const client* c) {
+    return c->session.player_id();
+}
+ARENA_API std::uint32_t arena_entity_id(const client* c) {
+    return c->session.entity_id();
+}
+ARENA_API std::uint32_t arena_tick_rate(const client* c) {
+    return c->session.tick_rate();
+}
+ARENA_API std::uint32_t arena_snapshot_rate(const client* c) {
+    return c->session.snapshot_rate();
+}
+// The world's bounds from the Welcome's config, for drawing and for interpolating across a
+// wrapping edge: 1 when bodies wrap around (Asteroids), and the world's width and height (m).
+ARENA_API int arena_world_wraps(const client* c) {
+    const auto* config = c->session.config();
+    return config != nullptr && config->boundary == arena::world::boundary::wrap ? 1 : 0;
+}
+ARENA_API double arena_world_width(const client* c) {
+    const auto* config = c->session.config();
+    return config != nullptr ? static_cast<double>(config->size.x()) : 0.0;
+}
+ARENA_API double arena_world_height(const client* c) {
+    const auto* config = c->session.config();
+    return config != nullptr ? static_cast<double>(config->size.y()) : 0.0;
+}
+ARENA_API std::uint32_t arena_view_tick(const client* c) {
+    return c->session.view_tick();
+}
+ARENA_API std::uint32_t arena_view_ack(const client* c) {
+    return c->session.view_ack();
+}
+ARENA_API std::uint32_t arena_last_sequence(const client* c) {
+    return c->session.last_sequence();
+}
+ARENA_API std::uint32_t arena_delta_ack(const client* c) {
+    return c->session.delta_ack();
+}
+ARENA_API const char* arena_delta_problem(const client* c) {
+    return c->session.delta_problem().c_str();
+}
+
+// The newest view: arena_view_count BodyStates of 32 bytes (id, owner, x, y, vx, vy, angle,
+// angular_velocity), by increasing id.
+ARENA_API const arena::protocol::BodyState* arena_view(const client* c) {
+    return c->session.view().data();
+}
+ARENA_API std::uint32_t arena_view_count(const client* c) {
+    return static_cast<std::uint32_t>(c->session.view().size());
+}
+ARENA_API const sdk_shape* arena_shapes(const client* c) {
+    return c->shapes.data();
+}
+ARENA_API std::uint32_t arena_shape_count(const client* c) {
+    return static_cast<std::uint32_t>(c->shapes.size());
+}
+ARENA_API const sdk_static* arena_statics(const client* c) {
+    return c->statics.data();
+}
+ARENA_API std::uint32_t arena_static_count(const client* c) {
+    return static_cast<std::uint32_t>(c->statics.size());
+}
+
+// The own body as predicted for the last input: x, y, vx, vy, angle, angular_velocity; null
+// before a snapshot placed it.
+ARENA_API const float* arena_predicted(client* c) {
+    const arena::world::body* b = c->session.predicted();
+    if (b == nullptr) return nullptr;
+    const float values[6] = {b->position.x(), b->position.y(), b->velocity.x(),
+                             b->velocity.y(), b->angle,        b->angular_velocity};
+    std::memcpy(c->predicted, values, sizeof(values));
+    return c->predicted;
+}
+// Metres, for the newest snapshot's acknowledged input; NaN when it measured none.
+ARENA_API double arena_prediction_error(const client* c) {
+    const auto e = c->session.prediction_error();
+    return e ? static_cast<double>(*e) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// --- replay -------------------------------------------------------------------------------
+
+// Opens a recording (a path in the module's file system); null when it cannot be read:
+// arena_replay_open_error says why.
+ARENA_API replay* arena_replay_open(const char* path) {
+    auto opened = arena::replay::replayer::open(path);
+    if (!opened) {
+        open_error = opened.error;
+        return nullptr;
+    }
+    auto* r = new replay;
+    r->replayer = std::move(opened.value);
+    return r;
+}
+ARENA_API const char* arena_replay_open_error() {
+    return open_error.c_str();
+}
+ARENA_API void arena_replay_free(replay* r) {
+    delete r;
+}
+
+// Replays to the end (until < 0) or to tick `until`, checking every recorded hash. Returns 1
+// when complete with every hash matching, 0 otherwise (arena_replay_error says why).
+ARENA_API int arena_replay_run(replay* r, double until) {
+    arena::replay::replay_options options;
+    if (until >= 0) options.until = static_cast<std::uint32_t>(until);
+    r->dump = "tick,hash\n";
+    options.on_tick = [r](std::uint32_t tick, std::uint64_t hash) {
+        char line[40];
+        std::snprintf(line, sizeof(line), "%" PRIu32 ",%016" PRIx64 "\n", tick, hash);
+        r->dump += line;
+    };
+    r->report = r->replayer->run(options);
+    r->error = r->report.error;
+    if (r->report.mismatch) {
+        char text[120];
+        std::snprintf(text, sizeof(text),
+                      "tick %" PRIu32 ": hash mismatch: expected %016" PRIx64 ", actual %016" PRIx64,
+                      r->report.mismatch->tick, r->report.mismatch->expected, r->report.mismatch->actual);
+        r->error = text;
+    }
+    return r->report.complete && !r->report.mismatch ? 1 : 0;
+}
+// What arena-replay --dump-hashes prints: "tick,hash" then one line per tick.
+ARENA_API const char* arena_replay_dump(const replay* r) {
+    return r->dump.c_str();
+}
+ARENA_API const char* arena_replay_error(const replay* r) {
+    return r->error.c_str();
+}
+ARENA_API std::uint32_t arena_replay_final_tick(const replay* r) {
+    return r->report.final_tick;
+}
+ARENA_API std::uint32_t arena_replay_hashes_checked(const replay* r) {
+    return r->report.hashes_checked;
+}
+// The final state hash (the world's and the rules'), 16 hex digits, as arena-replay's final_hash.
+ARENA_API const char* arena_replay_final_hash(replay* r) {
+    char text[17];
+    std::snprintf(text, sizeof(text), "%016" PRIx64, r->report.final_hash);
+    r->final_hash = text;
+    return r->final_hash.c_str();
+}
+// The replayed world's bodies now, as BodyStates (32 bytes each), by id.
+ARENA_API const arena::protocol::BodyState* arena_replay_bodies(replay* r) {
+    r->bodies.clear();
+    for (const arena::world::body& b : r->replayer->state().bodies())
+        r->bodies.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle,
+                               b.angular_velocity);
+    return r->bodies.data();
+}
+ARENA_API std::uint32_t arena_replay_body_count(const replay* r) {
+    return static_cast<std::uint32_t>(r->bodies.size());
+}

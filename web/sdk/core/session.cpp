@@ -1,0 +1,186 @@
+#include "web/sdk/core/session.hpp"
+
+#include <algorithm>
+#include <variant>
+
+#include "protocol/config_hash.hpp"
+#include "protocol/decode.hpp"
+#include "protocol/messages.hpp"
+#include "protocol/verify.hpp"
+#include "server/config/config_json.hpp"
+#include "server/world/world.hpp"
+
+namespace arena::sdk {
+
+session::session(bool delta_snapshots) : delta_snapshots_(delta_snapshots), frames_(protocol::max_server_frame_body) {}
+
+protocol::Payload session::fail(std::string reason) {
+    if (!ended_) error_ = std::move(reason);
+    ended_ = true;
+    return protocol::Payload::NONE;
+}
+
+std::span<const std::uint8_t> session::keep(std::vector<std::uint8_t> frame) {
+    out_ = std::move(frame);
+    return out_;
+}
+
+protocol::Payload session::feed(std::span<const std::uint8_t> frame) {
+    if (ended_) return protocol::Payload::NONE;
+    // Through the frame reader: it checks the prefix against the limit and gives FlatBuffers
+    // the 8-byte aligned copy it wants, wherever the caller's bytes are.
+    const std::size_t used = frames_.feed(frame);
+    if (frames_.failed()) return fail("bad frame from the server: " + std::string(frames_.error()));
+    if (!frames_.has_frame() || used != frame.size())
+        return fail("a message from the server that is not exactly one frame");
+    const auto verified = protocol::verify_message(frames_.frame(), protocol::server_frame_limits);
+    if (!verified) {
+        frames_.next();
+        return fail("invalid message from the server: " + verified.error);
+    }
+    const protocol::Message& message = *verified.value;
+    using protocol::Payload;
+    const Payload type = message.payload_type();
+    Payload handled = type;
+    if (type == Payload::Welcome && !joined()) {
+        handled = on_welcome(message);
+    } else if (type == Payload::Snapshot && joined()) {
+        handled = on_snapshot(message);
+    } else if (type == Payload::Pong && joined()) {
+        if (!protocol::decode_pong(message)) handled = fail("Pong: malformed");
+    } else if (type == Payload::Reject) {
+        const auto reject = protocol::decode_reject(message);
+        if (!reject) {
+            handled = fail("Reject: " + reject.error);
+        } else {
+            const char* name = protocol::EnumNameRejectCode(reject.value.code);
+            fail("Reject " + std::string(name != nullptr && *name != '\0' ? name : "unknown") + ": " +
+                 reject.value.reason);
+        }
+    } else if (type == Payload::Bye) {
+        const auto bye = protocol::decode_bye(message);
+        if (!bye) {
+            handled = fail("Bye: " + bye.error);
+        } else {
+            fail("Bye: " + bye.value.reason);
+        }
+    } else {
+        handled = fail("unexpected " + std::string(protocol::payload_name(type)) + " from the server " +
+                       (joined() ? "while playing" : "before Welcome"));
+    }
+    frames_.next();
+    return handled;
+}
+
+protocol::Payload session::on_welcome(const protocol::Message& message) {
+    const auto welcome = protocol::decode_welcome(message);
+    if (!welcome) return fail("Welcome: " + welcome.error);
+    const protocol::welcome_info& w = welcome.value;
+    if (protocol::world_config_hash(w.world_config) != w.world_config_hash)
+        return fail("Welcome: world_config_hash does not match world_config");
+    if (w.world_version != world::world_version)
+        return fail("Welcome: world_version " + std::to_string(w.world_version) + ", this client predicts version " +
+                    std::to_string(world::world_version));
+    if (w.tick_rate == 0 || w.snapshot_rate == 0) return fail("Welcome: tick_rate and snapshot_rate must be positive");
+    auto parsed = config::parse_config_json(w.world_config);
+    if (auto* e = std::get_if<config::config_error>(&parsed)) return fail("Welcome: world_config: " + e->message);
+    config_ = std::get<world::world_config>(std::move(parsed));
+    player_id_ = w.player_id;
+    entity_id_ = w.entity_id;
+    tick_rate_ = w.tick_rate;
+    snapshot_rate_ = w.snapshot_rate;
+    statics_ = w.statics;
+    predictor_.emplace(*config_, entity_id_, player_id_);
+    if (delta_snapshots_) deltas_.emplace(tick_rate_);
+    return protocol::Payload::Welcome;
+}
+
+protocol::Payload session::on_snapshot(const protocol::Message& message) {
+    const auto decoded = protocol::decode_snapshot(message);
+    if (!decoded) return fail("Snapshot: " + decoded.error);
+    const protocol::snapshot_view& snapshot = decoded.value;
+    if (have_view_ && snapshot.tick <= view_tick_) return fail("Snapshot: tick went back");
+    delta_problem_.clear();
+
+    // The shapes first: a delta that does not decode still brings them.
+    if (snapshot.shapes != nullptr) {
+        arrived_.clear();
+        const std::string problem = protocol::read_shapes(snapshot.shapes, snapshot.shape_vertices, arrived_);
+        if (!problem.empty()) return fail("Snapshot: " + problem);
+        const auto by_id = [](const protocol::shape_desc& a, const protocol::shape_desc& b) {
+            return a.id < b.id;
+        };
+        for (const protocol::shape_desc& d : arrived_) {
+            const auto at = std::lower_bound(shapes_.begin(), shapes_.end(), d, by_id);
+            if (at != shapes_.end() && at->id == d.id) {
+                *at = d;
+            } else {
+                shapes_.insert(at, d);
+            }
+        }
+    }
+
+    if (snapshot.is_delta) {
+        if (!deltas_) return fail("Snapshot: a delta, but this client asked for full snapshots");
+        const auto quantized = deltas_->receive(snapshot);
+        // The receiver dropped its baselines: the next Input acknowledges 0 and the server
+        // sends a full view. This snapshot is skipped, the session goes on.
+        if (!quantized) {
+            delta_problem_ = quantized.error;
+            ++delta_failures_;
+            return protocol::Payload::Snapshot;
+        }
+        view_.clear();
+        for (const protocol::delta::quantized_body& q : quantized.value)
+            view_.push_back(protocol::delta::dequantize(q));
+    } else {
+        view_.assign(snapshot.bodies.begin(), snapshot.bodies.end());
+    }
+    have_view_ = true;
+    view_tick_ = snapshot.tick;
+    view_ack_ = snapshot.ack_sequence;
+
+    // Shapes are kept while their body is in the newest view (both lists go by id).
+    std::size_t kept = 0, b = 0;
+    for (std::size_t s = 0; s < shapes_.size(); ++s) {
+        while (b < view_.size() && view_[b].id() < shapes_[s].id) ++b;
+        if (b < view_.size() && view_[b].id() == shapes_[s].id) shapes_[kept++] = shapes_[s];
+    }
+    shapes_.resize(kept);
+
+    const auto at = std::lower_bound(view_.begin(), view_.end(), entity_id_,
+                                     [](const protocol::BodyState& body, std::uint32_t id) { return body.id() < id; });
+    const protocol::BodyState* own = (at != view_.end() && at->id() == entity_id_) ? &*at : nullptr;
+    const bots::predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
+    if (c.problem == bots::predictor::ack_problem::went_back) return fail("Snapshot: ack_sequence went back");
+    if (c.problem == bots::predictor::ack_problem::ahead)
+        return fail("Snapshot: ack_sequence acknowledges an input never sent");
+    prediction_error_ = c.error;
+    return protocol::Payload::Snapshot;
+}
+
+const world::body* session::predicted() const {
+    return predictor_ ? predictor_->body() : nullptr;
+}
+
+std::span<const std::uint8_t> session::hello(std::string_view name, std::string_view token) {
+    return keep(protocol::encode_hello(protocol::protocol_version, name, token, delta_snapshots_));
+}
+
+std::span<const std::uint8_t> session::input(float thrust, float turn, std::uint8_t buttons) {
+    if (!predictor_ || ended_) return {};
+    const world::player_input in{thrust, turn, buttons};
+    const std::uint32_t sequence = predictor_->last_sequence() + 1;
+    predictor_->on_input(sequence, in);
+    return keep(protocol::encode_input({sequence, thrust, turn, buttons, delta_ack(), {}}));
+}
+
+std::span<const std::uint8_t> session::ping(std::uint64_t client_time) {
+    return keep(protocol::encode_ping(client_time));
+}
+
+std::span<const std::uint8_t> session::bye(std::string_view reason) {
+    return keep(protocol::encode_bye(reason));
+}
+
+}  // namespace arena::sdk

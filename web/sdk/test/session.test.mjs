@@ -1,0 +1,69 @@
+// A real match's session, recorded from the native build (arena-sdk-record-session), made
+// again on the WebAssembly build: every answer equal byte for byte: the frames it encodes, the
+// views it decodes from delta snapshots, the shapes it holds, the predicted own body.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { test } from 'node:test';
+import { fixtures, fromBase64, loadCore, sdk } from './helpers.mjs';
+
+const recorded = JSON.parse(fs.readFileSync(path.join(fixtures, 'session.json'), 'utf8'));
+
+test('the WebAssembly session answers every call of a native session over a real match identically', async () => {
+  const core = await loadCore();
+  const session = new sdk.CoreSession(core);
+  let snapshots = 0, deltas = 0, predicted = 0, inputs = 0, views = 0;
+  for (const [i, call] of recorded.calls.entries()) {
+    const where = `call ${i}`;
+    if (call.hello) {
+      assert.deepEqual(session.hello(...call.hello), fromBase64(call.out), where);
+    } else if (call.input) {
+      assert.deepEqual(session.input(...call.input), fromBase64(call.out), where);
+      ++inputs;
+    } else {
+      const frame = fromBase64(call.feed);
+      assert.equal(session.feed(frame), call.type, `${where}: ${session.error()}`);
+      if (call.type === sdk.Payload.Snapshot) {
+        ++snapshots;
+        if (frame.length > 0 && call.delta_problem === '') ++views;
+        assert.equal(session.deltaProblem(), call.delta_problem, where);
+        assert.equal(session.viewTick, call.tick, where);
+        assert.deepEqual(session.viewBytes(), fromBase64(call.view), `${where}: the decoded view`);
+        assert.equal(session.shapes().length, call.shapes, where);
+        if (session.deltaAck !== 0) ++deltas;
+      }
+      if (call.predicted) {
+        assert.deepEqual(session.predictedBytes(), fromBase64(call.predicted), `${where}: the predicted body`);
+        ++predicted;
+      } else {
+        assert.equal(session.predicted(), null, where);
+      }
+    }
+  }
+  assert.equal(session.ended(), false, session.error());
+  assert.ok(snapshots > 150 && deltas > 100 && predicted > 100 && inputs > 500,
+            `snapshots ${snapshots}, with a delta ack ${deltas}, predicted ${predicted}, inputs ${inputs}`);
+  assert.ok(session.shapes().length > 0, 'the view holds shapes');
+  session.dispose();
+});
+
+test('frames that are not one verified message end the session with a reason', async () => {
+  const core = await loadCore();
+  const welcome = fromBase64(recorded.calls.find((c) => c.type === sdk.Payload.Welcome).feed);
+
+  const cut = new sdk.CoreSession(core);
+  assert.equal(cut.feed(welcome.subarray(0, welcome.length - 3)), 0);
+  assert.match(cut.error(), /not exactly one frame/);
+
+  const flipped = welcome.slice();
+  flipped[4] ^= 0xff;  // inside the root offset
+  const bad = new sdk.CoreSession(core);
+  assert.equal(bad.feed(flipped), 0);
+  assert.match(bad.error(), /invalid message from the server/);
+
+  const twice = new sdk.CoreSession(core);
+  assert.equal(twice.feed(welcome), sdk.Payload.Welcome);
+  assert.equal(twice.feed(welcome), 0);
+  assert.match(twice.error(), /unexpected Welcome from the server while playing/);
+  for (const s of [cut, bad, twice]) s.dispose();
+});
