@@ -78,7 +78,7 @@ add_custom_command(
   OUTPUT ${dist_dir}/arena-sdk.mjs
   COMMAND ${ARENA_NODE} ${sdk_dir}/node_modules/typescript/bin/tsc -p ${sdk_dir}/tsconfig.json
   COMMAND ${sdk_dir}/node_modules/.bin/esbuild ${CMAKE_CURRENT_SOURCE_DIR}/src/index.ts --bundle --format=esm
-          --platform=neutral --target=es2020 --tsconfig=${sdk_dir}/tsconfig.json
+          --platform=neutral --main-fields=module,main --target=es2020 --tsconfig=${sdk_dir}/tsconfig.json
           --external:./arena_core.mjs --log-level=warning
           --outfile=${dist_dir}/arena-sdk.mjs
   DEPENDS ${sdk_sources} ${sdk_dir}/tsconfig.json ${sdk_dir}/gen/arena_generated.ts

@@ -1,5 +1,14 @@
 // Arena's browser SDK: the client core in WebAssembly and what a game draws with.
+export { connect, ArenaClient } from './client.js';
+export type { ConnectOptions, SocketLike, Welcome, SnapshotEvent, DrawBody, RenderState } from './client.js';
 export { Core, Payload } from './core.js';
 export type { BodyState, Shape, StaticBody, ReplayResult, CoreModuleOptions } from './core.js';
 export { CoreSession } from './session.js';
 export type { PredictedBody } from './session.js';
+export { Interpolator, shortest, wrapAngle } from './interpolation.js';
+export type { InterpolationOptions, Sampled } from './interpolation.js';
+export { CorrectionSmoother } from './smoothing.js';
+export type { SmoothingOptions } from './smoothing.js';
+export { readMessage } from './messages.js';
+export * as protocol from '@arena/protocol';
+export type { PlayerLine, GameEvent, ByeFields, WelcomeFields } from './messages.js';

@@ -21,3 +21,6 @@ export async function loadCore() {
 export function fromBase64(text) {
   return new Uint8Array(Buffer.from(text, 'base64'));
 }
+
+// The generated schema classes, as the bundle carries them (for reading frames in tests).
+export const protocol = sdk.protocol;

@@ -1,0 +1,93 @@
+// connect() over a fake socket that plays a real match's frames (recorded from the native
+// build): the Hello and every Input the SDK sends equal the native session's bytes and read
+// back through the generated TypeScript to the controls given (frames round trip); events
+// come; stateAt draws the own body predicted and the others interpolated; close() says Bye.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { test } from 'node:test';
+import { fixtures, fromBase64, loadCore, protocol, sdk } from './helpers.mjs';
+
+const recorded = JSON.parse(fs.readFileSync(path.join(fixtures, 'session.json'), 'utf8'));
+
+class FakeSocket {
+  binaryType = 'blob';
+  sent = [];
+  closed = false;
+  onopen = null; onmessage = null; onclose = null; onerror = null;
+  send(data) { this.sent.push(new Uint8Array(data)); }
+  close() { this.closed = true; }
+}
+
+test('a game client over a fake socket sends what the native session sent and draws the match', async () => {
+  const core = await loadCore();
+  let socket;
+  let now = 1000;
+  const client = await sdk.connect('ws://test/ws', 'fixture', '', { core, socket: (url) => (socket = new FakeSocket()), now: () => now, autoPump: false });
+  const events = { welcome: 0, snapshot: 0, pong: 0, bye: [] };
+  const errors = [];
+  client.on('welcome', (w) => { ++events.welcome; assert.equal(w.tickRate, 60); assert.equal(w.world.wraps, true); });
+  client.on('snapshot', (s) => { ++events.snapshot; if (s.predictionError !== null) errors.push(s.predictionError); });
+  client.on('bye', (b) => events.bye.push(b));
+  assert.equal(socket.binaryType, 'arraybuffer');
+  socket.onopen({});
+
+  let ticks = 0, welcomeAt = 0, inputs = 0, pings = 0;
+  for (const call of recorded.calls) {
+    if (call.hello) {
+      assert.deepEqual(socket.sent.shift(), fromBase64(call.out), 'the Hello');
+    } else if (call.feed) {
+      const frame = fromBase64(call.feed);
+      if (call.type === sdk.Payload.Welcome) welcomeAt = now;
+      socket.onmessage({ data: frame.buffer.slice(frame.byteOffset, frame.byteOffset + frame.length) });
+    } else if (call.input) {
+      client.input(...call.input);
+      ++ticks;
+      now = welcomeAt + (ticks * 1000) / 60 + 0.5;
+      client.pump(now);
+      const sent = socket.sent.splice(0);
+      const own = sent.filter((f) => sdk.readMessage(f).payloadType() === sdk.Payload.Input);
+      assert.equal(own.length, 1, `one Input per tick (tick ${ticks})`);
+      assert.deepEqual(own[0], fromBase64(call.out), `Input ${ticks}: the native session's bytes`);
+      const read = sdk.readMessage(own[0]).payload(new protocol.Input());
+      assert.equal(read.sequence(), ticks);
+      assert.equal(read.thrust(), Math.fround(call.input[0]));
+      assert.equal(read.turn(), Math.fround(call.input[1]));
+      assert.equal(read.buttons(), call.input[2]);
+      ++inputs;
+      pings += sent.length - own.length;
+    }
+    if (call.feed && call.type === sdk.Payload.Snapshot && events.snapshot > 10) {
+      const state = client.stateAt(now);
+      assert.ok(state.own && state.own.predicted, 'the own body is drawn, predicted');
+      assert.ok(state.bodies.length > 1, 'other bodies are drawn');
+      assert.ok(state.bodies.filter((b) => !b.predicted).every((b) => b.id !== state.own.id));
+      assert.ok(state.bodies.some((b) => b.shape !== undefined && b.kind === 2), 'rocks come with their shapes');
+    }
+  }
+  assert.equal(events.welcome, 1);
+  assert.ok(events.snapshot > 150, `${events.snapshot} snapshots`);
+  assert.ok(inputs > 500);
+  assert.ok(Math.abs(pings - ticks / 60) <= 1, `${pings} Pings in ${ticks} ticks: one a second`);
+  assert.ok(errors.length > 100 && errors.every((e) => e < 2), 'prediction errors measured, small');
+  assert.deepEqual(events.bye, []);
+
+  client.close('done');
+  const bye = socket.sent.pop();
+  assert.equal(sdk.readMessage(bye).payloadType(), sdk.Payload.Bye);
+  assert.equal(socket.closed, true);
+  assert.equal(events.bye.length, 1);
+  assert.equal(events.bye[0].reason, 'done');
+});
+
+test('a frame the core refuses ends the session with a bye event that says why', async () => {
+  const core = await loadCore();
+  let socket;
+  const client = await sdk.connect('ws://test/ws', 'x', '', { core, socket: () => (socket = new FakeSocket()), now: () => 0, autoPump: false });
+  const byes = [];
+  client.on('bye', (b) => byes.push(b));
+  socket.onmessage({ data: new Uint8Array([8, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8]).buffer });
+  assert.equal(byes.length, 1);
+  assert.match(byes[0].reason, /invalid message from the server/);
+  assert.equal(socket.closed, true);
+});
