@@ -32,6 +32,7 @@ client_core::client_core(client_shared& shared, client_params params)
       frames_(protocol::max_server_frame_body),
       fault_rng_(params_.seed ^ (0xa0761d6478bd642fULL * (std::uint64_t{params_.index} + 1))) {
     outcome_.misbehaving = params_.mode != misbehavior::none;
+    outcome_.name = params_.name;
 }
 
 void client_core::launch(time_ns now) {
@@ -148,8 +149,8 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     m.snapshot_bytes_each.add(static_cast<double>(message_bytes_));
     m.snapshot_bytes += message_bytes_;
 
-    // Before the view: a delta that does not decode still brings its shapes.
-    if (!take_shapes(snapshot)) return;
+    // Before the view: a delta that does not decode still brings its shapes and the game.
+    if (!take_shapes(snapshot) || !take_game(snapshot)) return;
     std::span<const protocol::BodyState> bodies = snapshot.bodies;
     if (snapshot.is_delta) {
         if (!deltas_) return end(end_kind::protocol_error, "Snapshot: a delta, but this bot asked for full snapshots");
@@ -219,6 +220,48 @@ bool client_core::take_shapes(const protocol::snapshot_view& snapshot) {
     return true;
 }
 
+bool client_core::take_game(const protocol::snapshot_view& snapshot) {
+    if (snapshot.table == nullptr) return true;
+    game_.clear();
+    const std::string problem = protocol::read_game(*snapshot.table, game_);
+    if (!problem.empty()) {
+        end(end_kind::protocol_error, problem);
+        return false;
+    }
+    if (game_.empty()) return true;
+    fleet_metrics& m = shared_.metrics();
+    m.game_bytes += game_.wire_bytes();
+    for (std::size_t i = 0; i < game_.name_ids.size(); ++i) names_[game_.name_ids[i]] = game_.names[i];
+    for (const protocol::player_row& row : game_.players) players_[row.player] = row;
+    for (const protocol::game_event& e : game_.events) {
+        if (e.sequence <= last_event_) continue;  // taken from an earlier snapshot
+        last_event_ = e.sequence;
+        ++m.game_events;
+        // A respawn of ours: the new ship is our body from this snapshot on.
+        if (e.kind == protocol::GameEventKind::respawn && e.player == player_id_) entity_id_ = e.body;
+        events_.push_back(e);
+        if (events_.size() > max_kept_events) events_.pop_front();
+    }
+    return true;
+}
+
+std::string client_core::player_name(std::uint32_t player) const {
+    const auto it = names_.find(player);
+    return it == names_.end() ? std::string() : it->second;
+}
+
+void client_core::record_scoreboard() {
+    outcome_.scoreboard.clear();
+    if (result_.over) {
+        for (std::size_t i = 0; i < result_.scoreboard.size(); ++i)
+            outcome_.scoreboard.push_back({result_.names[i], result_.scoreboard[i]});
+        outcome_.final_scoreboard = true;
+        outcome_.winner = result_.winner;
+        return;
+    }
+    for (const auto& [id, row] : players_) outcome_.scoreboard.push_back({player_name(id), row});
+}
+
 void client_core::check_shapes(std::span<const protocol::BodyState> bodies) {
     // Both lists go by id: one merge keeps the shapes of the view's bodies.
     std::size_t keep = 0, b = 0;
@@ -267,6 +310,7 @@ void client_core::on_bye(const protocol::Message& message) {
     if (!bye) return end(end_kind::protocol_error, "Bye: " + bye.error);
     // An orderly goodbye (the server's match is over, or it is stopping), not a fault.
     outcome_.server_goodbye = true;
+    result_ = bye.value.result;
     end(end_kind::by_server, "Bye: " + bye.value.reason);
 }
 
@@ -360,6 +404,7 @@ void client_core::end(end_kind kind, const std::string& reason) {
     if (phase_ == phase::ended) return;
     const bool was_playing = phase_ == phase::playing;
     phase_ = phase::ended;
+    record_scoreboard();
     outcome_.ended = true;
     outcome_.reason = reason;
     outcome_.ended_early = !shared_.stopping();

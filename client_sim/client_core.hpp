@@ -12,6 +12,7 @@
 // once the output is written, then call flushed()) and ended() (close now).
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -105,8 +106,18 @@ public:
     // or null when this client does not hold it. Held while the body is in the newest view.
     [[nodiscard]] const protocol::shape_desc* shape_of(std::uint32_t id) const;
     [[nodiscard]] const std::vector<protocol::static_body>& statics() const { return statics_; }
+    // The game (protocol/README.md, "Players and game events"): every player's line as of the
+    // newest snapshot applied, by player id; a player's name ("" before it came); the events
+    // taken, oldest first (the newest max_kept_events); the Bye's result once the match ended.
+    [[nodiscard]] const std::map<std::uint32_t, protocol::player_row>& players() const { return players_; }
+    [[nodiscard]] std::string player_name(std::uint32_t player) const;
+    [[nodiscard]] const std::deque<protocol::game_event>& events() const { return events_; }
+    [[nodiscard]] const protocol::match_result& result() const { return result_; }
+    static constexpr std::size_t max_kept_events = 256;
     // The last snapshot's ack_sequence (the newest input the server consumed), 0 before one.
     [[nodiscard]] std::uint32_t last_ack() const { return last_ack_; }
+    // The tick of the newest snapshot applied (0 before one).
+    [[nodiscard]] std::uint32_t last_snapshot_tick() const { return last_snapshot_tick_; }
     // Figures that need the whole run (this core's snapshot rate) into the metrics.
     void add_final_figures(fleet_metrics& metrics) const;
 
@@ -119,6 +130,10 @@ private:
     void on_bye(const protocol::Message& message);
     // Keeps the shapes a snapshot describes; false (the session ended) when they are malformed.
     bool take_shapes(const protocol::snapshot_view& snapshot);
+    // Keeps the lines, names and events a snapshot carries; false (ended) when malformed.
+    bool take_game(const protocol::snapshot_view& snapshot);
+    // The scoreboard this client holds, into the outcome (at the end).
+    void record_scoreboard();
     // The newest view is `bodies`: drops the shapes of bodies not in it, counts those without one.
     void check_shapes(std::span<const protocol::BodyState> bodies);
 
@@ -152,6 +167,12 @@ private:
     std::vector<protocol::shape_desc> arrived_;        // a snapshot's descriptions, being merged
     std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
     std::uint32_t last_ack_ = 0;
+    std::map<std::uint32_t, protocol::player_row> players_;  // by player id
+    std::map<std::uint32_t, std::string> names_;             // by player id
+    std::deque<protocol::game_event> events_;
+    std::uint32_t last_event_ = 0;  // the sequence of the newest event taken
+    protocol::game_list game_;      // a snapshot's, being read
+    protocol::match_result result_;
     std::uint32_t last_snapshot_tick_ = 0;
     std::deque<protocol::earlier_input> recent_inputs_;  // datagrams: repeated in the next Inputs
 

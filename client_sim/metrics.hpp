@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client_sim/stats.hpp"
+#include "protocol/game.hpp"
 
 namespace arena::bots {
 
@@ -13,7 +14,15 @@ namespace arena::bots {
 using tally = std::map<std::string, std::uint64_t>;
 
 // How one bot's run ended.
+// One line of a scoreboard as a client saw it.
+struct seen_line {
+    std::string name;
+    protocol::player_row row;
+    bool operator==(const seen_line&) const = default;
+};
+
 struct bot_outcome {
+    std::string name;  // the bot's Hello.name
     bool misbehaving = false;
     bool joined = false;
     bool ended = false;           // its connection is over
@@ -21,6 +30,11 @@ struct bot_outcome {
     bool protocol_error = false;  // the server sent something the protocol does not allow
     bool server_goodbye = false;  // the server ended it with Bye or Reject shutting_down: orderly
     std::string reason;           // why it ended; empty while it runs
+    // The scoreboard this client saw at the end: the Bye's when the match's end reached it
+    // (final_scoreboard), else the lines it held last. Empty under rules that keep no score.
+    std::vector<seen_line> scoreboard;
+    bool final_scoreboard = false;
+    std::uint32_t winner = 0;  // the Bye's winner (0: nobody, or no Bye)
 
     // A well-behaved bot must join, keep its session until the run or the server ends it,
     // and never see a protocol error. Misbehaving bots are expected to be dropped and never
@@ -48,6 +62,8 @@ struct fleet_metrics {
     std::uint64_t stale_messages = 0;        // on datagrams: snapshots duplicated or overtaken, dropped
     std::uint64_t shapes_received = 0;       // body shapes described by snapshots (statics of Welcomes apart)
     std::uint64_t shape_bytes = 0;           // their BodyShape and ShapeVertex bytes
+    std::uint64_t game_bytes = 0;            // the game's lines, names and events in snapshots
+    std::uint64_t game_events = 0;           // events taken (each once per client)
     std::uint64_t bodies_without_shape = 0;  // bodies in a decoded view whose shape the bot did not hold
 
     // The current second, for the progress line; rolled over by the fleet's reporter.

@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
     app.add_option("--duration", options.duration_s,
                    "run this many seconds, then shut down cleanly (default: until a signal)")
         ->check(cli::finite_non_negative);
+    app.add_option("--score-limit", options.match.score_limit,
+                   "end the match when a player's score reaches N (default 0: no limit; rules that keep score)")
+        ->check(CLI::Range(0u, 4000000000u));
     app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
     app.add_option("--input-buffer", options.match.input_buffer, "inputs buffered per player (default 8)")
         ->check(CLI::Range(1, 1024));

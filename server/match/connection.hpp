@@ -32,6 +32,11 @@ public:
     // by priority, snapshot_fanout.hpp); 0: no limit. A datagram transport sets its datagram
     // budget; a stream has none.
     virtual size_t snapshot_budget() const { return 0; }
+    // The same Bye carrying the end of the match: the winner and the final scoreboard
+    // (protocol Bye.match_over). A transport that cannot send it yet sends the plain Bye.
+    virtual void close_with_result(std::string_view reason, const protocol::match_result& /*result*/) {
+        close_with_bye(reason);
+    }
     // The peer's address as the logs show it ("127.0.0.1:52814"; "" when unknown).
     virtual std::string_view peer() const = 0;
     // The peer's address without its port ("127.0.0.1", "::1"): handshake slots are shared

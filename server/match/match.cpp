@@ -43,7 +43,9 @@ match::match(const match_config& config, const world::world_config& world_config
       rules_(rules::make_rules(world_)),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
-      fanout_({config.view_radius, baseline_ring(), config.tick_rate}) {
+      fanout_({config.view_radius, baseline_ring(), config.tick_rate}),
+      // Events are kept as long as a delta baseline: an acknowledgement older cannot be used.
+      game_(config.delta_history * snapshot_interval()) {
     // The Welcome tells clients the snapshot rate; it must be the rate they get.
     if (config.tick_rate == 0 || config.snapshot_rate == 0 || config.tick_rate % config.snapshot_rate != 0)
         throw std::invalid_argument("snapshot rate " + std::to_string(config.snapshot_rate) +
@@ -159,7 +161,9 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
                                     0,
                                     {},
                                     input_buffer(config_.input_buffer),
-                                    snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget())});
+                                    snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget()),
+                                    0,
+                                    world_.tick()});
         pending_joins_.push_back(id);
     } else {
         // The same player again: a reconnection, or a new connection taking over.
@@ -178,6 +182,8 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         p.inputs = input_buffer(config_.input_buffer);
         p.snapshots =
             snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget());  // holds no baseline yet
+        p.game_sent_tick = 0;
+        p.connected_tick = world_.tick();
         if (p.body_id) pending_welcomes_.push_back(id);
         log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
     }
@@ -256,10 +262,20 @@ void match::shut_down(std::string_view reason) {
     std::vector<std::pair<uint64_t, connection*>> all;
     for (auto& [c, cl] : clients_) all.emplace_back(cl.serial, const_cast<connection*>(c));
     std::sort(all.begin(), all.end());
+    const protocol::match_result end = result();
     for (auto& [serial, c] : all) {
         forget(clients_.find(c), close_cause{close_cause::kind::shutdown, {}, std::string(reason)});
-        c->close_with_bye(reason);
+        if (end.over) {
+            c->close_with_result(reason, end);
+        } else {
+            c->close_with_bye(reason);
+        }
     }
+}
+
+protocol::match_result match::result() const {
+    if (!rules_->has_state()) return {};
+    return game_.result(rules_->winner());
 }
 
 void match::forget(client_map::iterator it, const close_cause& cause) {
@@ -332,6 +348,12 @@ void match::tick() {
     for (auto& [id, p] : players_)
         if (const uint32_t body = rules_->body_of(id.value()); body != 0) p.body_id = world::body_id{body};
     tag_new_bodies();
+    if (rules_->has_state()) {
+        const std::vector<rules::score_line> board = rules_->scoreboard();
+        game_.update(world_.tick(), board, rules_->events(), names_);
+        if (config_.score_limit > 0)
+            for (const rules::score_line& line : board) over_ = over_ || line.score >= config_.score_limit;
+    }
     // Taken out of the list first: a send may end a connection (a Reject while sending), whose
     // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the
     // list itself then skipped a reconnected player's Welcome.
@@ -419,7 +441,11 @@ void match::send_snapshots() {
     const uint32_t interval = snapshot_interval();
     const uint32_t phase = world_.tick() % interval;
     kinds_.forget_missing(world_.bodies());
-    fanout_.begin(world_, &kinds_);
+    // The shared frame (BodyState clients of whole-world views, on the interval's ticks)
+    // carries what changed since the previous one: its clients got that one.
+    const bool shared_due = phase == 0 && fanout_.shared_full_frame() && !game_.empty();
+    if (shared_due) game_.collect(fanout_.last_shared_tick(), fanout_.last_shared_tick(), shared_game_);
+    fanout_.begin(world_, &kinds_, shared_due ? &shared_game_ : nullptr);
     // By id rather than by iterator: a send may end a connection, and with it a player.
     for (auto it = players_.begin(); it != players_.end();) {
         const world::player_id id = it->first;
@@ -429,18 +455,35 @@ void match::send_snapshots() {
     }
 }
 
+const protocol::game_list* match::game_for(const player& p) {
+    if (game_.empty()) return nullptr;
+    uint32_t held = 0;
+    if (p.snapshots.delta) {
+        // Held: what the newest acknowledged snapshot sent to this client brought.
+        const uint32_t acked = p.snapshots.acked_tick;
+        if (acked != 0 && acked < world_.tick() && p.snapshots.views.at(acked) != nullptr) held = acked;
+    } else {
+        held = p.game_sent_tick;  // a stream: what was sent arrived
+    }
+    game_.collect(held, p.connected_tick, game_list_);
+    return &game_list_;
+}
+
 void match::send_snapshot(player& p) {
     const uint32_t ack = p.inputs.last_consumed_sequence();
     ++counters_.snapshots_sent;
     if (!p.snapshots.delta && fanout_.shared_full_frame()) {
         if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(p.snapshots)) {
             counters_.snapshot_bytes = shared->frame().size();
+            p.game_sent_tick = world_.tick();
             p.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
             return;
         }
     }
-    const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack)
-                                         : fanout_.full_frame(p.snapshots, p.body_id, ack);
+    const protocol::game_list* game = game_for(p);
+    if (!p.snapshots.delta) p.game_sent_tick = world_.tick();
+    const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack, game)
+                                         : fanout_.full_frame(p.snapshots, p.body_id, ack, game);
     counters_.snapshot_bytes = frame.size();
     p.who->send_snapshot_frame(frame);
 }

@@ -23,6 +23,7 @@
 #include "server/match/close_cause.hpp"
 #include "server/match/connection.hpp"
 #include "server/match/figures.hpp"
+#include "server/match/game_feed.hpp"
 #include "server/match/input_buffer.hpp"
 #include "server/match/logger.hpp"
 #include "server/match/snapshot_fanout.hpp"
@@ -48,6 +49,7 @@ struct match_config {
     double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
     uint32_t delta_history = 32;    // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
+    uint32_t score_limit = 0;       // the match is over when a player's score reaches it; 0: no limit
 };
 
 struct match_counters {
@@ -101,8 +103,13 @@ public:
     // `c` ended by itself (end of stream, a socket error): a joined player's body waits
     // reconnect_grace_s for the same identity.
     void disconnect(connection& c, const close_cause& cause);
-    // No new players from now on, and Bye(reason) to every connection.
+    // No new players from now on, and Bye(reason) to every connection; under rules that keep
+    // score the Bye carries the result: the winner and the final scoreboard.
     void shut_down(std::string_view reason);
+    // True once a player's score reached match_config::score_limit: the server shuts down.
+    [[nodiscard]] bool over() const { return over_; }
+    // The result the last Bye carries (over is false under rules that keep no score).
+    [[nodiscard]] protocol::match_result result() const;
 
     // One world step: joins, leaves, one input per player, the step, then the snapshot if due;
     // then what time alone refuses (a Hello that never came).
@@ -147,7 +154,9 @@ private:
         uint32_t disconnected_at_tick = 0;
         world::body_id body_id;  // none (0) until spawned
         input_buffer inputs;
-        snapshot_client snapshots;  // delta baselines and the client's acknowledgement
+        snapshot_client snapshots;    // delta baselines and the client's acknowledgement
+        uint32_t game_sent_tick = 0;  // BodyState clients: the tick of the last snapshot sent (game_feed)
+        uint32_t connected_tick = 0;  // the events a new connection hears start after it
     };
     struct client {
         uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
@@ -176,6 +185,8 @@ private:
     void send_snapshots();  // to the clients whose snapshot is due this tick
     void tag_new_bodies();  // the rules' kind of each body that appeared since the last tick
     void send_snapshot(player& p);
+    // Into game_list_: what `p`'s snapshot at this tick carries of the game.
+    const protocol::game_list* game_for(const player& p);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
@@ -198,8 +209,12 @@ private:
     bool draining_ = false;
     snapshot_fanout fanout_;
     body_kinds kinds_;
-    uint32_t kinds_asked_below_ = 0;  // the rules were asked the kind of every body id below this
-    match_counters counters_;         // departed players' buffers folded in on leave
+    uint32_t kinds_asked_below_ = 0;   // the rules were asked the kind of every body id below this
+    match_counters counters_;          // departed players' buffers folded in on leave
+    game_feed game_;                   // lines, names and events for the players (rules with state)
+    protocol::game_list game_list_;    // one client's, being sent
+    protocol::game_list shared_game_;  // the shared frame's
+    bool over_ = false;
 };
 
 }  // namespace arena::match

@@ -11,7 +11,8 @@ namespace arena::match {
 
 std::span<const uint8_t> snapshot_fanout::budgeted_frame(snapshot_client& client, world::body_id own,
                                                          uint32_t ack_sequence, uint32_t baseline_tick,
-                                                         const std::vector<uint32_t>* held, uint32_t sent_ack) {
+                                                         const std::vector<uint32_t>* held, uint32_t sent_ack,
+                                                         const protocol::game_list* game) {
     const auto bodies = world_->bodies();
     protocol::delta::shared_encoder& encoder = encoder_for(baseline_tick);
     const std::span<const uint32_t> base_view =
@@ -35,7 +36,7 @@ std::span<const uint8_t> snapshot_fanout::budgeted_frame(snapshot_client& client
         trial_shapes_.update(tick_, bodies, sent_, sent_ack, false, [&](uint32_t i) {
             shapes_.append(describe(*world_, bodies[i], kinds_->of(bodies[i].id)));
         });
-        frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_);
+        frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game);
         built = n;
         return frame.size() <= client.budget;
     };

@@ -15,9 +15,10 @@ snapshot_fanout::snapshot_fanout(const fanout_config& config)
     // back as a client's oldest kept snapshot.
     : config_(config), history_(tick_ring{config.ring.depth * config.ring.interval, 1}) {}
 
-void snapshot_fanout::begin(const world::world& w, const body_kinds* kinds) {
+void snapshot_fanout::begin(const world::world& w, const body_kinds* kinds, const protocol::game_list* shared_game) {
     world_ = &w;
     kinds_ = kinds != nullptr ? kinds : &no_kinds_;
+    shared_game_ = shared_game;
     tick_ = w.tick();
     now_ = nullptr;
     states_ready_ = index_ready_ = shared_ready_ = false;
@@ -46,7 +47,7 @@ void snapshot_fanout::build_shared() {
         for (const world::body& b : bodies) {
             if (b.id >= shared_next_id_) shared_shapes_.append(describe(*world_, b, kinds_->of(b.id)));
         }
-        shared_.build(tick_, states(), &shared_shapes_);
+        shared_.build(tick_, states(), &shared_shapes_, shared_game_);
         shared_base_tick_ = last_shared_tick_;
         last_shared_tick_ = tick_;
         if (!bodies.empty()) shared_next_id_ = std::max(shared_next_id_, bodies.back().id + 1);
@@ -112,7 +113,7 @@ delta::shared_encoder& snapshot_fanout::encoder_for(uint32_t baseline_tick) {
 }
 
 std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, world::body_id own,
-                                                      uint32_t ack_sequence) {
+                                                      uint32_t ack_sequence, const protocol::game_list* game) {
     find_view(own);
     // This tick's state first: recording it replaces the ring's oldest tick, which must not
     // be picked as a baseline below (and then overwritten under the encoder's feet).
@@ -128,14 +129,14 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, w
     }
     // Shapes are confirmed by any acknowledged snapshot this client was sent, a baseline or not.
     const uint32_t sent_ack = acked != 0 && acked < tick_ && client.views.at(acked) != nullptr ? acked : 0;
-    if (client.budget != 0) return budgeted_frame(client, own, ack_sequence, baseline_tick, held, sent_ack);
+    if (client.budget != 0) return budgeted_frame(client, own, ack_sequence, baseline_tick, held, sent_ack, game);
     encoder_for(baseline_tick)
         .encode(view_, held != nullptr ? std::span<const uint32_t>(*held) : std::span<const uint32_t>(), delta_bytes_);
     describe_view(client, sent_ack, false);
     client.views.record(tick_, view_);
 
     const auto frame =
-        protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_);
+        protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game);
     ++(baseline_tick != 0 ? counters_.delta_frames : counters_.keyframes);
     counters_.delta_bytes += frame.size();
     counters_.delta_payload_bytes += delta_bytes_.size();
@@ -143,8 +144,8 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, w
     return frame;
 }
 
-std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, world::body_id own,
-                                                     uint32_t ack_sequence) {
+std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
+                                                     const protocol::game_list* game) {
     find_view(own);
     full_states_.clear();
     const auto& all = states();
@@ -158,7 +159,7 @@ std::span<const uint8_t> snapshot_fanout::full_frame(snapshot_client& client, wo
         build_shared();
         client.shared_tick = tick_;
     }
-    return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_, &shapes_);
+    return protocol::encode_snapshot(fbb_, tick_, ack_sequence, full_states_, &shapes_, game);
 }
 
 }  // namespace arena::match

@@ -71,11 +71,18 @@ public:
     explicit snapshot_fanout(const fanout_config& config);
 
     // A new tick of this world: what the previous tick prepared is stale. `kinds` tags the
-    // bodies' shapes (null: every body is kind 0); it must outlive the tick.
-    void begin(const world::world& w, const body_kinds* kinds = nullptr);
+    // bodies' shapes (null: every body is kind 0); it must outlive the tick. `shared_game`:
+    // what the shared frame carries of the game (the lines and events after
+    // last_shared_tick(), game_feed.hpp), likewise.
+    void begin(const world::world& w, const body_kinds* kinds = nullptr,
+               const protocol::game_list* shared_game = nullptr);
+    // The tick of the newest shared frame (0: none yet).
+    [[nodiscard]] uint32_t last_shared_tick() const { return last_shared_tick_; }
 
-    // The frame for a delta client whose body is `own`. Valid until the next call.
-    std::span<const uint8_t> delta_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence);
+    // The frame for a delta client whose body is `own`, carrying `game` (optional). Valid
+    // until the next call.
+    std::span<const uint8_t> delta_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
+                                         const protocol::game_list* game = nullptr);
 
     // True: BodyState clients share shared_frame(); false: each gets full_frame().
     [[nodiscard]] bool shared_full_frame() const { return config_.view_radius <= 0; }
@@ -83,7 +90,8 @@ public:
     // previous one (it then needs full_frame() to learn the shapes it lacks).
     [[nodiscard]] const protocol::snapshot_encoder* shared_frame(snapshot_client& client);
     // The BodyState frame of one client's view. Valid until the next call.
-    std::span<const uint8_t> full_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence);
+    std::span<const uint8_t> full_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
+                                        const protocol::game_list* game = nullptr);
 
     [[nodiscard]] const fanout_counters& counters() const { return counters_; }
     [[nodiscard]] const fanout_config& config() const { return config_; }
@@ -104,7 +112,7 @@ private:
     // delta_frame() for a client with a budget (snapshot_budget.cpp).
     std::span<const uint8_t> budgeted_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
                                             uint32_t baseline_tick, const std::vector<uint32_t>* held,
-                                            uint32_t sent_ack);
+                                            uint32_t sent_ack, const protocol::game_list* game);
 
     fanout_config config_;
     const world::world* world_ = nullptr;
@@ -125,6 +133,7 @@ private:
     std::vector<uint8_t> delta_bytes_;
     std::vector<protocol::BodyState> full_states_;
     const body_kinds* kinds_ = nullptr;
+    const protocol::game_list* shared_game_ = nullptr;
     body_kinds no_kinds_;
     protocol::shape_list shapes_;         // this frame's descriptions
     protocol::shape_list shared_shapes_;  // the shared frame's

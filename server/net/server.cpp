@@ -164,6 +164,11 @@ void server::run_due_ticks() {
         run_ticks_.add(spent);
         window_ticks_.add(spent);
         tick_seconds_.observe(static_cast<double>(spent) / 1e9);
+        if (match_.over()) {
+            // The rules' winner and the final scoreboard go out in every Bye.
+            shutdown("match over (--score-limit reached)");
+            return;
+        }
     }
     const int64_t now = now_ns();
     if (due > 0) last_tick_ns_ = now;

@@ -163,6 +163,10 @@ void session::close_with_bye(std::string_view reason) {
     close_after(protocol::encode_bye(reason));
 }
 
+void session::close_with_result(std::string_view reason, const protocol::match_result& result) {
+    close_after(protocol::encode_bye(reason, &result));
+}
+
 void session::close_after(protocol::frame_bytes last_frame) {
     if (closing_) return;
     closing_ = true;

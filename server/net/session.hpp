@@ -32,6 +32,7 @@ public:
     void close(protocol::RejectCode code, std::string_view reason) override;
     // Sends Bye(reason) and closes (server shutdown, a takeover).
     void close_with_bye(std::string_view reason) override;
+    void close_with_result(std::string_view reason, const protocol::match_result& result) override;
     std::string_view peer() const override { return peer_; }
 
     // Nanoseconds that output has waited without a byte written (0 when nothing waits).

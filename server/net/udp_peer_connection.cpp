@@ -119,6 +119,10 @@ void udp_peer_connection::close_with_bye(std::string_view reason) {
     close_after(protocol::encode_bye(reason));
 }
 
+void udp_peer_connection::close_with_result(std::string_view reason, const protocol::match_result& result) {
+    close_after(protocol::encode_bye(reason, &result));
+}
+
 void udp_peer_connection::close_after(const protocol::frame_bytes& last_frame) {
     if (closing_) return;
     send_packet(last_frame, channel_reliable, ENET_PACKET_FLAG_RELIABLE);

@@ -31,6 +31,7 @@ public:
     void send_snapshot_frame(std::span<const uint8_t> frame) override;
     void close(protocol::RejectCode code, std::string_view reason) override;
     void close_with_bye(std::string_view reason) override;
+    void close_with_result(std::string_view reason, const protocol::match_result& result) override;
     std::string_view peer() const override { return peer_text_; }
     size_t snapshot_budget() const override;
 

@@ -137,8 +137,10 @@ asteroids_rules::player* asteroids_rules::player_of_ship(uint32_t body_id) {
     return nullptr;
 }
 
-void asteroids_rules::destroy_ship(world::world& w, uint32_t player_id, std::vector<uint32_t>& removals) {
+void asteroids_rules::destroy_ship(world::world& w, uint32_t player_id, uint32_t shooter,
+                                   std::vector<uint32_t>& removals) {
     player& p = players_[player_id];
+    events_.push_back({event_kind::ship_destroyed, 0, player_id, shooter, p.ship, shooter ? params_.score_ship : 0});
     removals.push_back(p.ship);
     p.ship = 0;
     ++p.score.deaths;
@@ -190,6 +192,7 @@ void asteroids_rules::split_rock(world::world& w, uint32_t id, std::vector<uint3
 }
 
 void asteroids_rules::after_step(world::world& w) {
+    events_.clear();
     std::vector<uint32_t> removals;
     std::vector<uint32_t> consumed;  // bodies an earlier event of this step used up
     const auto used = [&consumed](uint32_t id) {
@@ -221,15 +224,19 @@ void asteroids_rules::after_step(world::world& w) {
                 ship = id;
         }
         if (bullet && rock) {
-            bullet_hits(bullet, rock, points(rocks_[rock]));
+            const uint32_t size = rocks_[rock];
+            events_.push_back(
+                {event_kind::rock_hit, static_cast<uint8_t>(size), bullets_[bullet].owner, 0, rock, points(size)});
+            bullet_hits(bullet, rock, points(size));
             split_rock(w, rock, removals);
         } else if (bullet && ship) {
             const uint32_t victim = w.find(ship)->owner;
+            const uint32_t shooter = bullets_[bullet].owner;
             ++bullet_hits(bullet, ship, params_.score_ship).kills;
-            destroy_ship(w, victim, removals);
+            destroy_ship(w, victim, shooter, removals);
         } else if (rock && ship) {
             consumed.push_back(ship);
-            destroy_ship(w, w.find(ship)->owner, removals);
+            destroy_ship(w, w.find(ship)->owner, 0, removals);
         }
     }
     const uint32_t now = w.tick();
@@ -259,11 +266,13 @@ void asteroids_rules::respawn_due(world::world& w) {
         const std::optional<uint32_t> ship = w.add_body(b);
         if (!ship) continue;  // the world is full: try again next tick
         make_ship(w, id, p, *ship, true);
+        events_.push_back({event_kind::respawn, 0, id, 0, *ship, 0});
     }
 }
 
 void asteroids_rules::spawn_wave(world::world& w) {
     ++wave_size_;
+    events_.push_back({event_kind::wave, 0, 0, 0, 0, wave_size_});
     const world::rock_config& rocks = w.config().rocks;
     const uint32_t corners_per_rock = std::clamp<uint32_t>(rocks.polygon_vertices, 3, world::max_polygon_vertices);
     const real radius = params_.wave_rock_radius;
@@ -379,9 +388,25 @@ std::vector<score_line> asteroids_rules::scoreboard() const {
         s.player = id;
         s.lives = p.lives;
         s.out = p.state == ship_state::out;
+        s.state = p.state;
         lines.push_back(s);
     }
     return lines;
+}
+
+uint32_t asteroids_rules::winner() const {
+    uint32_t best = 0, best_score = 0;
+    bool tie = false;
+    for (const auto& [id, p] : players_) {
+        if (best == 0 || p.score.score > best_score) {
+            best = id;
+            best_score = p.score.score;
+            tie = false;
+        } else if (p.score.score == best_score) {
+            tie = true;
+        }
+    }
+    return tie ? 0 : best;
 }
 
 }  // namespace arena::rules

@@ -65,6 +65,9 @@ public:
     bool has_state() const override { return true; }
     void hash(world::fnv1a& h) const override;
     std::vector<score_line> scoreboard() const override;
+    std::span<const game_event> events() const override { return events_; }
+    // The highest score; a tie at the top is nobody's win.
+    uint32_t winner() const override;
 
     const asteroids_params& params() const { return params_; }
     // Rock size of body `id`: 3 large, 2 medium, 1 small, 0 not a rock.
@@ -76,7 +79,7 @@ public:
     uint32_t wave() const { return wave_size_; }
 
 private:
-    enum class ship_state : uint8_t { playing, respawning, out };
+    using ship_state = player_state;
     struct player {
         uint32_t ship = 0;       // body id while playing, else 0
         uint32_t last_ship = 0;  // the latest ship's id: the match names a leaving player by it
@@ -94,7 +97,8 @@ private:
 
     void make_ship(world::world& w, uint32_t player_id, player& p, uint32_t body_id, bool invulnerable);
     void fire(world::world& w, uint32_t player_id, player& p);
-    void destroy_ship(world::world& w, uint32_t player_id, std::vector<uint32_t>& removals);
+    // `shooter`: the player whose bullet did it, 0 for a rock.
+    void destroy_ship(world::world& w, uint32_t player_id, uint32_t shooter, std::vector<uint32_t>& removals);
     void split_rock(world::world& w, uint32_t id, std::vector<uint32_t>& removals);
     void respawn_due(world::world& w);
     void spawn_wave(world::world& w);
@@ -108,6 +112,7 @@ private:
     std::map<uint32_t, bullet> bullets_;  // by body id
     std::map<uint32_t, uint32_t> rocks_;  // body id → size
     uint32_t wave_size_ = 0;              // large rocks in the last wave
+    std::vector<game_event> events_;      // the last after_step's
 };
 
 }  // namespace arena::rules

@@ -18,6 +18,9 @@
 
 namespace arena::rules {
 
+// What a player is doing in the game (protocol PlayerState).
+enum class player_state : uint8_t { playing, respawning, out };
+
 // One player's line of the scoreboard.
 struct score_line {
     uint32_t player = 0;  // player id (the owner of its bodies)
@@ -28,6 +31,20 @@ struct score_line {
     uint32_t hits = 0;
     uint32_t lives = 0;
     bool out = false;  // no lives left, or left the match
+    player_state state = player_state::playing;
+};
+
+// Something that happened in a step, for the players to hear (protocol GameEvent; the
+// match numbers them). The rules define what each field means per kind.
+enum class event_kind : uint8_t { rock_hit, ship_destroyed, respawn, wave };
+struct game_event {
+    event_kind kind = event_kind::rock_hit;
+    uint8_t size = 0;     // rock_hit: the rock's size
+    uint32_t player = 0;  // whom it happened to, or who did it
+    uint32_t other = 0;   // ship_destroyed: the shooter (0: a rock)
+    uint32_t body = 0;    // the rock hit, the ship lost, the new ship
+    uint32_t value = 0;   // points scored; wave: its rocks
+    bool operator==(const game_event&) const = default;
 };
 
 class rules {
@@ -55,6 +72,10 @@ public:
     virtual void hash(world::fnv1a&) const {}
     // Players in id order (empty for sandbox rules).
     virtual std::vector<score_line> scoreboard() const { return {}; }
+    // What happened in the last after_step, in order (derived from the state: not hashed).
+    virtual std::span<const game_event> events() const { return {}; }
+    // The player winning now, as this game decides it; 0 = nobody (a tie, or no game).
+    virtual uint32_t winner() const { return 0; }
 };
 
 // The rules `config.rules` names, set up on `w` (a new world built from `config`).

@@ -2,6 +2,7 @@
 // scripted match through apply_tick against a golden scoreboard and state hash.
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdio>
 
@@ -398,4 +399,59 @@ TEST_CASE("the scoreboard JSON lists every player in id order with its name", "[
           R"([{"deaths":1,"hits":3,"kills":0,"name":"ada","player":1,"score":70,"shots":12},)"
           R"({"deaths":0,"hits":1,"kills":1,"name":"bob \"b\"","player":4,"score":200,"shots":5}])");
     CHECK(config::scoreboard_json({}) == "[]");
+}
+
+TEST_CASE("the rules tell what happened (a rock hit, a ship lost, its respawn, a new wave) and who wins",
+          "[rules][asteroids]") {
+    game g(one_rock(1));
+    g.join(1);
+    g.join(2);
+    CHECK(g.r.winner() == 0);  // a tie at 0: nobody
+    for (int k = 0; k < 121; ++k) g.step();
+    g.shoot(1, 1);  // returns right after the step of the hit
+    REQUIRE(g.r.events().size() == 1);
+    const rules::game_event hit = g.r.events()[0];
+    CHECK(hit.kind == rules::event_kind::rock_hit);
+    CHECK(hit.player == 1);
+    CHECK(hit.body == 1);
+    CHECK(hit.size == 3);
+    CHECK(hit.value == g.r.params().score_large);
+    CHECK(g.r.winner() == 1);
+    g.step();
+    CHECK(g.r.events().empty());  // each step tells its own
+
+    // Player 2 rams a piece: destroyed by a rock (nobody's bullet), then respawned.
+    uint32_t piece = 0;
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) == 2) piece = b.id;
+    REQUIRE(piece != 0);
+    const uint32_t old_ship = g.r.body_of(2);
+    world::body* rock = g.w.find(piece);
+    rock->velocity = {0, 0};
+    world::body* ship = g.w.find(old_ship);
+    ship->position = rock->position - vec2{rock->radius + ship->radius + 0.5f, 0};
+    ship->velocity = {10, 0};
+    for (int k = 0; k < 30 && g.r.body_of(2) != 0; ++k) g.step();
+    REQUIRE(g.r.body_of(2) == 0);
+    const auto lost = std::find_if(g.r.events().begin(), g.r.events().end(), [](const rules::game_event& e) {
+        return e.kind == rules::event_kind::ship_destroyed;
+    });
+    REQUIRE(lost != g.r.events().end());
+    CHECK(lost->player == 2);
+    CHECK(lost->other == 0);
+    CHECK(lost->body == old_ship);
+    CHECK(g.score(2).state == rules::player_state::respawning);
+    while (g.r.body_of(2) == 0) g.step();
+    REQUIRE(g.r.events().size() == 1);
+    CHECK(g.r.events()[0].kind == rules::event_kind::respawn);
+    CHECK(g.r.events()[0].player == 2);
+    CHECK(g.r.events()[0].body == g.r.body_of(2));
+    CHECK(g.score(2).state == rules::player_state::playing);
+
+    // A field without rocks: the first step brings a wave of one more than the last (none).
+    game empty(one_rock(0));
+    empty.step();
+    REQUIRE(empty.r.events().size() == 1);
+    CHECK(empty.r.events()[0].kind == rules::event_kind::wave);
+    CHECK(empty.r.events()[0].value == 1);
 }

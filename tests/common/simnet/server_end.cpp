@@ -93,6 +93,11 @@ void server_end::close_with_bye(std::string_view reason) {
     close_after(protocol::encode_bye(reason), std::string(reason));
 }
 
+void server_end::close_with_result(std::string_view reason, const protocol::match_result& result) {
+    if (closed_) return;
+    close_after(protocol::encode_bye(reason, &result), std::string(reason));
+}
+
 void server_end::close_after(const protocol::frame_bytes& last_word, std::string reason) {
     closed_ = true;
     close_reason_ = std::move(reason);

@@ -1,0 +1,110 @@
+// The game as the clients hear it (protocol/README.md, "Players and game events"), over
+// links that lose, duplicate and reorder: every client holds every player's line as the server
+// had it at the snapshot the client applied last, takes each event once and in order, follows
+// its own ship through respawns, and gets the final scoreboard and the winner in the last Bye.
+#include <catch2/catch.hpp>
+#include <map>
+
+#include "server/world/presets.hpp"
+#include "simnet/match_sim.hpp"
+
+namespace {
+
+using namespace arena;
+using namespace arena::simnet;
+using phase = bots::client_core::phase;
+
+conditions lossy(bool datagrams) {
+    conditions c;
+    c.latency = 80 * ms;
+    c.jitter = 20 * ms;
+    c.loss = datagrams ? 0.15 : 0.03;
+    if (datagrams) {
+        c.duplicate = 0.05;
+        c.reorder = 0.1;
+    }
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("every client holds the server's scoreboard lines and hears each event once, over lossy links",
+          "[simnet][match][game]") {
+    const link_kind kind = GENERATE(link_kind::datagram, link_kind::stream);
+    const bool datagrams = kind == link_kind::datagram;
+    // Streams: BodyState clients of the whole world share one frame; datagrams: delta views.
+    const float view_radius = datagrams ? 100.0f : 0.0f;
+    INFO((datagrams ? "datagrams, delta snapshots" : "stream, shared BodyState snapshots"));
+    sim_options o;
+    o.kind = kind;
+    o.clients = 10;
+    o.up = o.down = lossy(datagrams);
+    o.delta_snapshots = datagrams;
+    o.behavior = bots::behavior_choice::hunter;
+    o.seed = 91;
+    match::match_config config;
+    config.preset = "asteroids";
+    config.max_players = 10;
+    config.max_inputs_per_second = 4u * config.tick_rate;  // a lossy stream's bursts (match_sim_tests.cpp)
+    config.view_radius = view_radius;
+    world::world_config world = *world::preset_by_name("asteroids");
+    world.rules = world::game_rules::asteroids;
+    match_sim sim(config, world, o);
+
+    // The server's scoreboard after every tick, to compare with what each client holds.
+    std::map<uint32_t, std::vector<rules::score_line>> boards;
+    for (int t = 0; t < 1800; ++t) {
+        sim.run_ticks(1);
+        boards[sim.match().state().tick()] = sim.match().game_rules().scoreboard();
+    }
+    const match::match_counters counters = sim.match().counters();
+    REQUIRE(counters.hits > 0);
+    REQUIRE(counters.shots > 0);
+    const bots::fleet_metrics& m = sim.shared().metrics();
+    CHECK(m.game_events > 0);
+    uint64_t respawns_followed = 0;
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+        const bots::client_core& c = sim.client(i);
+        INFO("client " << i << ": " << c.outcome().reason);
+        REQUIRE(c.current() == phase::playing);
+        const auto board = boards.find(c.last_snapshot_tick());
+        REQUIRE(board != boards.end());
+        REQUIRE(c.players().size() == board->second.size());
+        for (const rules::score_line& line : board->second) {
+            INFO("player " << line.player);
+            const auto held = c.players().find(line.player);
+            REQUIRE(held != c.players().end());
+            CHECK(held->second.score == line.score);
+            CHECK(held->second.kills == line.kills);
+            CHECK(held->second.deaths == line.deaths);
+            CHECK(held->second.lives == line.lives);
+            CHECK(static_cast<int>(held->second.state) == static_cast<int>(line.state));
+            CHECK(held->second.shots <= line.shots);  // shots ride along: never ahead
+            CHECK(c.player_name(line.player).rfind("sim-", 0) == 0);
+        }
+        // Each event once, in order; the client's own body follows its respawns.
+        uint32_t previous = 0;
+        for (const protocol::game_event& e : c.events()) {
+            CHECK(e.sequence > previous);
+            previous = e.sequence;
+            if (e.kind == protocol::GameEventKind::respawn && e.player == c.player_id()) ++respawns_followed;
+        }
+        if (sim.match().game_rules().body_of(c.player_id()) != 0)
+            CHECK(c.entity_id() == sim.match().game_rules().body_of(c.player_id()));
+    }
+    CHECK(respawns_followed > 0);
+
+    // The end: the Bye carries the rules' winner and the final scoreboard, exact.
+    const protocol::match_result result = sim.match().result();
+    REQUIRE(result.over);
+    sim.match().shut_down("match over (test)");
+    sim.run_ticks(300);
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+        const bots::client_core& c = sim.client(i);
+        INFO("client " << i << ": " << c.outcome().reason);
+        CHECK(c.ended());
+        CHECK(c.result() == result);
+        CHECK(c.outcome().final_scoreboard);
+        REQUIRE(c.outcome().scoreboard.size() == result.scoreboard.size());
+    }
+}
