@@ -1,5 +1,6 @@
 #include "client_sim/report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace arena::bots {
@@ -10,6 +11,48 @@ std::string format(const char* fmt, auto... args) {
     char buffer[256];
     std::snprintf(buffer, sizeof buffer, fmt, args...);
     return buffer;
+}
+
+double accuracy(const protocol::player_row& r) {
+    return r.shots == 0 ? 0.0 : 100.0 * static_cast<double>(r.hits) / static_cast<double>(r.shots);
+}
+
+const char* state_name(protocol::PlayerState s) {
+    const char* name = protocol::EnumNamePlayerState(s);
+    return name != nullptr && *name != '\0' ? name : "?";
+}
+
+nlohmann::json lines_json(const std::vector<seen_line>& lines) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const seen_line& l : lines) {
+        out.push_back({{"player", l.row.player},
+                       {"name", l.name},
+                       {"score", l.row.score},
+                       {"kills", l.row.kills},
+                       {"deaths", l.row.deaths},
+                       {"shots", l.row.shots},
+                       {"hits", l.row.hits},
+                       {"lives", l.row.lives},
+                       {"state", state_name(l.row.state)}});
+    }
+    return out;
+}
+
+void append_scoreboard(std::string& out, const final_report& r) {
+    if (r.scoreboards_seen == 0) return;
+    const auto winner = std::find_if(r.scoreboard.begin(), r.scoreboard.end(),
+                                     [&r](const seen_line& l) { return l.row.player == r.winner; });
+    out += format("scoreboard (%s; winner: %s): %u of %u clients saw exactly this one\n",
+                  r.scoreboard_final ? "final, from the server's Bye" : "the last lines, no Bye with the result",
+                  winner == r.scoreboard.end() ? "nobody" : winner->name.c_str(), r.scoreboards_agreeing,
+                  r.scoreboards_seen);
+    out += format("  %-20s %8s %6s %6s %6s %6s %9s\n", "name", "score", "kills", "deaths", "shots", "hits", "accuracy");
+    for (const seen_line& l : r.scoreboard) {
+        out += format("  %-20s %8u %6u %6u %6u %6u %7.1f %%\n", l.name.c_str(), l.row.score, l.row.kills, l.row.deaths,
+                      l.row.shots, l.row.hits, accuracy(l.row));
+    }
+    out += format("game: %llu events heard, %llu bytes of lines, names and events\n",
+                  static_cast<unsigned long long>(r.game_events), static_cast<unsigned long long>(r.game_bytes));
 }
 
 nlohmann::json tally_json(const tally& t) {
@@ -48,6 +91,18 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
             ++r.failures[o.reason.empty() ? "did not join before the run ended" : o.reason];
         }
     }
+    for (const bot_outcome& o : outcomes) {
+        if (o.misbehaving || o.scoreboard.empty()) continue;
+        if (r.scoreboards_seen++ == 0) {
+            r.scoreboard = o.scoreboard;
+            r.scoreboard_final = o.final_scoreboard;
+            r.winner = o.winner;
+        }
+        if (o.scoreboard == r.scoreboard && o.final_scoreboard == r.scoreboard_final) ++r.scoreboards_agreeing;
+        r.scoreboards.push_back(o);
+    }
+    r.game_bytes = m.game_bytes;
+    r.game_events = m.game_events;
     r.bytes_in = m.bytes_in;
     r.bytes_out = m.bytes_out;
     r.snapshots = m.snapshots;
@@ -128,6 +183,7 @@ std::string summary_table(const final_report& r) {
     out += format("shapes: %llu received (%llu bytes), %llu bodies seen without one\n",
                   static_cast<unsigned long long>(r.shapes_received), static_cast<unsigned long long>(r.shape_bytes),
                   static_cast<unsigned long long>(r.bodies_without_shape));
+    append_scoreboard(out, r);
     append_tally(out, "rejects", r.rejects);
     append_tally(out, "delta problems", r.delta_problems);
     append_tally(out, "disconnects", r.disconnects);
@@ -143,8 +199,24 @@ nlohmann::json to_json(const final_report& r) {
         figures[name] = {{"count", s.count}, {"mean", s.mean}, {"min", s.min},
                          {"p50", s.p50},     {"p99", s.p99},   {"max", s.max}};
     }
+    nlohmann::json boards = nlohmann::json::array();
+    for (const bot_outcome& o : r.scoreboards) {
+        boards.push_back({{"bot", o.name},
+                          {"final", o.final_scoreboard},
+                          {"winner", o.winner},
+                          {"lines", lines_json(o.scoreboard)}});
+    }
     return {
         {"seconds", r.seconds},
+        {"scoreboard",
+         {{"final", r.scoreboard_final},
+          {"winner", r.winner},
+          {"clients", r.scoreboards_seen},
+          {"agreeing", r.scoreboards_agreeing},
+          {"lines", lines_json(r.scoreboard)},
+          {"game_events", r.game_events},
+          {"game_bytes", r.game_bytes}}},
+        {"scoreboards", boards},
         {"bots", r.bots},
         {"joined", r.joined},
         {"failed", r.failed},

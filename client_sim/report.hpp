@@ -46,6 +46,17 @@ struct final_report {
     tally disconnects;
     tally failures;           // reason of each failed well-behaved bot
     tally misbehaving_drops;  // reason each misbehaving bot's session ended
+    // The game: the scoreboard the well-behaved bots saw at the end (the first one's: the
+    // Bye's when the match's end reached it), how many saw one and how many saw exactly it,
+    // and each bot's (JSON only).
+    std::vector<seen_line> scoreboard;
+    bool scoreboard_final = false;
+    std::uint32_t winner = 0;
+    std::uint32_t scoreboards_seen = 0;
+    std::uint32_t scoreboards_agreeing = 0;
+    std::vector<bot_outcome> scoreboards;
+    std::uint64_t game_bytes = 0;
+    std::uint64_t game_events = 0;
     // 0: every well-behaved bot joined, kept its session and met no protocol error; else 1.
     int exit_code = 0;
 };

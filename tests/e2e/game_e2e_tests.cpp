@@ -1,0 +1,102 @@
+// Asteroids as a game, end to end: arena-server (rules "asteroids", recording) and 16 hunter
+// bots as processes on loopback. The server's --duration ends the match, so every bot gets the
+// final scoreboard in the server's Bye; it must equal the server's own (--stats-json) and the
+// recording's (arena-replay --scoreboard).
+#include <signal.h>
+
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
+
+namespace {
+
+using arena::test::child_process;
+using arena::test::temp_dir;
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+const std::string bin_dir = ARENA_BIN_DIR;
+
+// The fields both scoreboards hold, per player id.
+json comparable(const json& lines, bool with_names) {
+    json out = json::array();
+    for (const json& l : lines) {
+        json c = {{"player", l.at("player")}, {"score", l.at("score")}, {"kills", l.at("kills")},
+                  {"deaths", l.at("deaths")}, {"shots", l.at("shots")}, {"hits", l.at("hits")}};
+        if (with_names) c["name"] = l.at("name");
+        out.push_back(c);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("16 hunter bots play a match: every client's final scoreboard is the server's and the replay's",
+          "[e2e][game]") {
+    temp_dir dir;
+    { std::ofstream(dir.file("game.json")) << R"({"preset": "asteroids", "rules": "asteroids"})"; }
+    // 12 s of play: hunters shoot rocks within a second and each other within a few (16 of
+    // them measured 8 kills in 12 s); the server ends the match, not the bots.
+    child_process server(
+        bin_dir + "/arena-server",
+        {"--bind", "127.0.0.1", "--port", "0", "--config", dir.file("game.json"), "--seed", "3", "--duration", "12",
+         "--record", dir.file("match.arpl"), "--stats-json", dir.file("stats.json")},
+        dir.file("server.log"));
+    const auto port = arena::test::wait_for_listening(server, 5s);
+    REQUIRE(port);
+    child_process bots(
+        bin_dir + "/arena-bots",
+        {"--host", "127.0.0.1", "--port", std::to_string(*port), "--bots", "16", "--behavior", "hunter", "--duration",
+         "30", "--seed", "4", "--connect-rate", "100", "--quiet", "--json", dir.file("bots.json")},
+        dir.file("bots.log"));
+    const auto bots_code = bots.wait_for(40s);
+    INFO(bots.output());
+    REQUIRE(bots_code.has_value());
+    CHECK(*bots_code == 0);
+    REQUIRE(server.wait_for(10s) == 0);
+    INFO(server.output());
+
+    const json report = json::parse(arena::test::read_file(dir.file("bots.json")));
+    CHECK(report.at("joined") == 16);
+    CHECK(report.at("failed") == 0);
+    const json& board = report.at("scoreboard");
+    CHECK(board.at("final") == true);
+    CHECK(board.at("clients") == 16);
+    CHECK(board.at("agreeing") == 16);  // every client saw the same final scoreboard
+    CHECK(board.at("game_events").get<uint64_t>() > 0);
+    uint64_t shots = 0, hits = 0, kills = 0;
+    for (const json& l : board.at("lines")) {
+        shots += l.at("shots").get<uint64_t>();
+        hits += l.at("hits").get<uint64_t>();
+        kills += l.at("kills").get<uint64_t>();
+    }
+    CHECK(shots > 0);
+    CHECK(hits > 0);
+    CHECK(kills > 0);
+    // The text summary prints it with accuracy.
+    CHECK(bots.output().find("scoreboard (final, from the server's Bye; winner: ") != std::string::npos);
+    CHECK(bots.output().find("accuracy") != std::string::npos);
+
+    // The server's own, and each client's, line for line.
+    const json stats = json::parse(arena::test::read_file(dir.file("stats.json")));
+    const json live = comparable(stats.at("scoreboard"), true);
+    CHECK(comparable(board.at("lines"), true) == live);
+    for (const json& seen : report.at("scoreboards")) {
+        INFO(seen.at("bot"));
+        CHECK(seen.at("final") == true);
+        CHECK(comparable(seen.at("lines"), true) == live);
+    }
+
+    // The recording replays to the same scoreboard (names aside: it holds player ids).
+    child_process replay(bin_dir + "/arena-replay", {dir.file("match.arpl"), "--scoreboard"}, dir.file("replay.log"));
+    REQUIRE(replay.wait_for(30s) == 0);
+    const std::string out = replay.output();
+    const size_t open = out.find('[');
+    REQUIRE(open != std::string::npos);
+    const json replayed = json::parse(out.substr(open, out.find('\n', open) - open));
+    CHECK(comparable(replayed, false) == comparable(stats.at("scoreboard"), false));
+}
