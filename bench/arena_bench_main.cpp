@@ -7,8 +7,9 @@
 //   replay     a recorded 64-player session re-simulated through the replayer, × real time
 //   bandwidth  256 moving players, full against delta snapshots, whole world and a view radius;
 //              1000 players with a view radius
+//   game       Asteroids rules, 32 players all firing: bytes per client with the game's lines and events
 //
-// usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick]
+// usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth,game] [--quick]
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
@@ -21,7 +22,7 @@
 #include "bench/cases.hpp"
 
 int main(int argc, char** argv) {
-    std::string only = "step,integrate,snapshot,replay,bandwidth";
+    std::string only = "step,integrate,snapshot,replay,bandwidth,game";
     bool quick = false;
     std::string tmp_dir = "/tmp";
     for (int i = 1; i < argc; ++i) {
@@ -33,7 +34,8 @@ int main(int argc, char** argv) {
             tmp_dir = argv[++i];
         } else {
             std::fprintf(
-                stderr, "usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth] [--quick] [--tmp DIR]\n");
+                stderr,
+                "usage: arena-bench [--only step,integrate,snapshot,replay,bandwidth,game] [--quick] [--tmp DIR]\n");
             return 2;
         }
     }
@@ -68,5 +70,7 @@ int main(int argc, char** argv) {
         }
         bench_bandwidth(1000, 50.0f, true, quick ? 150 : 600);
     }
+    // Asteroids as a game, 32 players all firing: the game's bytes on top of the views.
+    if (wants("game")) bench_game_bandwidth(32, 100.0f, quick ? 600 : 2400);
     return 0;
 }

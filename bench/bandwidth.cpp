@@ -10,8 +10,10 @@
 #include "bench/timing.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/receiver.hpp"
+#include "protocol/game.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
+#include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
 
@@ -51,6 +53,13 @@ struct measuring_client : match::connection {
             bodies += s.value.bodies.size();
             return;
         }
+        if (s.value.table != nullptr) {
+            protocol::game_list game;
+            if (protocol::read_game(*s.value.table, game).empty()) {
+                game_bytes += game.wire_bytes();
+                events += game.events.size();
+            }
+        }
         payload += s.value.delta.size();
         const auto view = receiver->receive(s.value);
         if (!view) {
@@ -77,7 +86,7 @@ struct measuring_client : match::connection {
     uint32_t now = 0;
     uint32_t acked = 0;
     std::deque<std::pair<uint32_t, uint32_t>> arrived;  // (tick received, ack it allows)
-    uint64_t snapshots = 0, bytes = 0, payload = 0, bodies = 0, errors = 0;
+    uint64_t snapshots = 0, bytes = 0, payload = 0, bodies = 0, errors = 0, game_bytes = 0, events = 0;
 };
 
 // Hands one client message to the match as a transport does: verified, then received.
@@ -88,14 +97,18 @@ bool deliver(match::match& g, match::connection& c, const protocol::frame_bytes&
 
 }  // namespace
 
-void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t ticks) {
+namespace {
+
+void run(uint32_t players, float view_radius, bool delta, uint32_t ticks, bool game) {
     match::match_config config;
     config.tick_rate = 60;
     config.snapshot_rate = 20;
     config.max_players = players;
     config.view_radius = view_radius;
     config.seed = 7;
-    match::match g(config, world::asteroids_preset());
+    world::world_config world_config = world::asteroids_preset();
+    if (game) world_config.rules = world::game_rules::asteroids;
+    match::match g(config, world_config);
     std::vector<std::unique_ptr<measuring_client>> clients;
     for (uint32_t i = 0; i < players; ++i) {
         clients.push_back(std::make_unique<measuring_client>(delta));
@@ -119,6 +132,7 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
                 in.turn = r.uniform(-1.0f, 1.0f);
             }
             in.sequence = t + 1;
+            in.buttons = game ? rules::button_fire : 0;  // as often as the cooldown allows
             in.snapshot_ack = delta ? c.ack_at(t) : 0;
             (void)deliver(g, c, protocol::encode_input(in));
         }
@@ -127,8 +141,10 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
         if (t >= warmup) tick_ms.push_back(ms_between(t0, clock::now()));
         for (auto& c : clients) c->receive_pending();
     }
-    uint64_t snapshots = 0, bytes = 0, payload = 0, bodies = 0, errors = 0;
+    uint64_t snapshots = 0, bytes = 0, payload = 0, bodies = 0, errors = 0, game_bytes = 0, events = 0;
     for (const auto& c : clients) {
+        game_bytes += c->game_bytes;
+        events += c->events;
         snapshots += c->snapshots;
         bytes += c->bytes;
         payload += c->payload;
@@ -141,6 +157,23 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
     const auto per = [](uint64_t a, uint64_t b) {
         return b == 0 ? 0.0 : static_cast<double>(a) / static_cast<double>(b);
     };
+    if (game) {
+        const match::match_counters counters = g.counters();
+        std::printf(
+            "{\"bench\":\"game_bandwidth\",\"players\":%u,\"bodies\":%zu,\"view_radius\":%.0f,\"mode\":\"%s\","
+            "\"ticks\":%u,\"snapshots\":%llu,\"errors\":%llu,\"shots\":%llu,\"hits\":%llu,\"kills\":%llu,"
+            "\"bytes_per_snapshot\":%.1f,\"bodies_per_snapshot\":%.1f,\"payload_bytes_per_body\":%.3f,"
+            "\"game_bytes_per_snapshot\":%.1f,\"events_per_snapshot\":%.2f,\"bytes_per_client_per_s\":%.0f,"
+            "\"tick_ms_median\":%.3f,\"tick_ms_p99\":%.3f}\n",
+            players, g.state().bodies().size(), view_radius, delta ? "delta" : "full", ticks,
+            static_cast<unsigned long long>(snapshots), static_cast<unsigned long long>(errors),
+            static_cast<unsigned long long>(counters.shots), static_cast<unsigned long long>(counters.hits),
+            static_cast<unsigned long long>(counters.kills), per(bytes, snapshots), per(bodies, snapshots),
+            per(payload, bodies), per(game_bytes, snapshots), per(events, snapshots),
+            per(bytes, snapshots) * config.snapshot_rate, s.median, p99);
+        std::fflush(stdout);
+        return;
+    }
     std::printf(
         "{\"bench\":\"bandwidth\",\"players\":%u,\"bodies\":%zu,\"view_radius\":%.0f,\"mode\":\"%s\","
         "\"ticks\":%u,\"snapshots\":%llu,\"errors\":%llu,\"bytes_per_snapshot\":%.1f,"
@@ -151,6 +184,16 @@ void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t t
         per(bodies, snapshots), per(bytes, bodies), per(payload, bodies), per(bytes, snapshots) * config.snapshot_rate,
         s.median, p99);
     std::fflush(stdout);
+}
+
+}  // namespace
+
+void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t ticks) {
+    run(players, view_radius, delta, ticks, false);
+}
+
+void bench_game_bandwidth(uint32_t players, float view_radius, uint32_t ticks) {
+    run(players, view_radius, true, ticks, true);
 }
 
 }  // namespace arena::bench

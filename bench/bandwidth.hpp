@@ -10,4 +10,8 @@ namespace arena::bench {
 // of the snapshots (delta clients are spread over the ticks between two snapshots).
 void bench_bandwidth(uint32_t players, float view_radius, bool delta, uint32_t ticks);
 
+// The same played as Asteroids ("rules": "asteroids") with every player firing whenever it
+// may: the line also holds the game's bytes per snapshot (players' lines, names, events).
+void bench_game_bandwidth(uint32_t players, float view_radius, uint32_t ticks);
+
 }  // namespace arena::bench

@@ -62,6 +62,25 @@ def bandwidth_table(rows):
             codec, r["bytes_per_client_per_s"], ratio, r["tick_ms_median"], r["tick_ms_p99"], r["errors"]))
 
 
+def game_bandwidth_table(rows):
+    """Asteroids played as a game: every player firing, the game's lines, names and events on top."""
+    gb = [r for r in rows if r["bench"] == "game_bandwidth"]
+    if not gb:
+        return
+    print()
+    print("Game bandwidth: Asteroids rules, every player firing as often as the cooldown allows, delta snapshots")
+    print("acknowledged 100 ms after arrival; \"game\" is the players' lines, names and events a snapshot carries.")
+    print()
+    print("| players | view | shots / hits / kills | bodies in view | bytes per snapshot | codec bytes per body | game bytes per snapshot | events per snapshot | bytes per client per s | tick p50 / p99 ms | decode errors |")
+    print("|---:|---|---|---:|---:|---|---:|---:|---:|---|---:|")
+    for r in gb:
+        print("| %d | %.0f m | %d / %d / %d | %.1f | %.0f | %.2f (≤ 4: %s) | %.1f | %.2f | %.0f | %.3f / %.3f | %d |" % (
+            r["players"], r["view_radius"], r["shots"], r["hits"], r["kills"], r["bodies_per_snapshot"],
+            r["bytes_per_snapshot"], r["payload_bytes_per_body"], ok(r["payload_bytes_per_body"] <= 4),
+            r["game_bytes_per_snapshot"], r["events_per_snapshot"], r["bytes_per_client_per_s"],
+            r["tick_ms_median"], r["tick_ms_p99"], r["errors"]))
+
+
 def pyramid_table(rows):
     """Box2D's pyramid scenes, Arena and Box2D 2.4.1 in one process (arena-bench-pyramids)."""
     pyr = [r for r in rows if r["bench"] == "pyramids"]
@@ -204,6 +223,7 @@ def main(argv):
     print("\n".join(out))
     profile_table(rows)
     bandwidth_table(rows)
+    game_bandwidth_table(rows)
     pyramid_table(rows)
     for note in notes:
         print()
