@@ -323,6 +323,8 @@ void server::write_stats_json(const std::string& path) const {
         names.push_back(s.name);
     }
     j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
+    // The player the rules declare the winner, as every client's last Bye says (0: nobody).
+    j["winner"] = match_.game_rules().winner();
     stats_json_sink figures(j);
     report(match_.counters(), figures);
     report(p, figures);

@@ -241,6 +241,10 @@ void ws_session::close_with_bye(std::string_view reason) {
     close_after(protocol::encode_bye(reason));
 }
 
+void ws_session::close_with_result(std::string_view reason, const protocol::match_result& result) {
+    close_after(protocol::encode_bye(reason, &result));
+}
+
 void ws_session::close_after(protocol::frame_bytes last_frame) {
     if (closing_) return;
     closing_ = true;

@@ -42,6 +42,7 @@ public:
     void send_snapshot_frame(std::span<const uint8_t> frame) override;
     void close(protocol::RejectCode code, std::string_view reason) override;
     void close_with_bye(std::string_view reason) override;
+    void close_with_result(std::string_view reason, const protocol::match_result& result) override;
     std::string_view peer() const override { return peer_; }
 
     int64_t stalled_ns(int64_t now_ns) const { return waiting_since_ns_ == 0 ? 0 : now_ns - waiting_since_ns_; }

@@ -1,11 +1,12 @@
 // Asteroids as a game, end to end: arena-server (rules "asteroids", recording) and 16 hunter
-// bots as processes on loopback. The server's --duration ends the match, so every bot gets the
-// final scoreboard in the server's Bye; it must equal the server's own (--stats-json) and the
-// recording's (arena-replay --scoreboard).
+// bots (12 over TCP, 4 over WebSocket) as processes on loopback. The server's --duration ends the match, so every bot
+// gets the final scoreboard in the server's Bye; it must equal the server's own (--stats-json) and the recording's
+// (arena-replay --scoreboard).
 #include <signal.h>
 
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -40,36 +41,46 @@ TEST_CASE("16 hunter bots play a match: every client's final scoreboard is the s
     temp_dir dir;
     { std::ofstream(dir.file("game.json")) << R"({"preset": "asteroids", "rules": "asteroids"})"; }
     // 12 s of play: hunters shoot rocks within a second and each other within a few (16 of
-    // them measured 8 kills in 12 s); the server ends the match, not the bots.
+    // them measured 8 kills in 12 s); the server ends the match, not the bots. 12 bots over
+    // TCP and 4 over WebSocket: each transport's Bye carries the result.
     child_process server(
         bin_dir + "/arena-server",
-        {"--bind", "127.0.0.1", "--port", "0", "--config", dir.file("game.json"), "--seed", "3", "--duration", "12",
-         "--record", dir.file("match.arpl"), "--stats-json", dir.file("stats.json")},
+        {"--bind", "127.0.0.1", "--port", "0", "--http-port", "0", "--config", dir.file("game.json"), "--seed", "3",
+         "--duration", "12", "--record", dir.file("match.arpl"), "--stats-json", dir.file("stats.json")},
         dir.file("server.log"));
     const auto port = arena::test::wait_for_listening(server, 5s);
+    const auto http_port = arena::test::wait_for_port_line(server, "http listening on", 5s);
     REQUIRE(port);
-    child_process bots(
-        bin_dir + "/arena-bots",
-        {"--host", "127.0.0.1", "--port", std::to_string(*port), "--bots", "16", "--behavior", "hunter", "--duration",
-         "30", "--seed", "4", "--connect-rate", "100", "--quiet", "--json", dir.file("bots.json")},
-        dir.file("bots.log"));
-    const auto bots_code = bots.wait_for(40s);
-    INFO(bots.output());
-    REQUIRE(bots_code.has_value());
-    CHECK(*bots_code == 0);
+    REQUIRE(http_port);
+    const auto bots = [&](const std::string& name, unsigned on, uint32_t count, const std::string& transport) {
+        return std::make_unique<child_process>(
+            bin_dir + "/arena-bots",
+            std::vector<std::string>{"--host",        "127.0.0.1", "--port",         std::to_string(on),
+                                     "--transport",   transport,   "--bots",         std::to_string(count),
+                                     "--behavior",    "hunter",    "--duration",     "30",
+                                     "--seed",        "4",         "--connect-rate", "100",
+                                     "--name-prefix", name,        "--json",         dir.file(name + ".json")},
+            dir.file(name + ".log"));
+    };
+    const std::unique_ptr<child_process> tcp = bots("bot", *port, 12, "tcp");
+    const std::unique_ptr<child_process> ws = bots("ws", *http_port, 4, "ws");
+    for (child_process* p : {tcp.get(), ws.get()}) {
+        const auto code = p->wait_for(40s);
+        INFO(p->output());
+        REQUIRE(code.has_value());
+        CHECK(*code == 0);
+    }
     REQUIRE(server.wait_for(10s) == 0);
     INFO(server.output());
+    // The text summary prints the scoreboard with accuracy.
+    CHECK(tcp->output().find("scoreboard (final, from the server's Bye; winner: ") != std::string::npos);
+    CHECK(tcp->output().find("accuracy") != std::string::npos);
 
-    const json report = json::parse(arena::test::read_file(dir.file("bots.json")));
-    CHECK(report.at("joined") == 16);
-    CHECK(report.at("failed") == 0);
-    const json& board = report.at("scoreboard");
-    CHECK(board.at("final") == true);
-    CHECK(board.at("clients") == 16);
-    CHECK(board.at("agreeing") == 16);  // every client saw the same final scoreboard
-    CHECK(board.at("game_events").get<uint64_t>() > 0);
+    const json stats = json::parse(arena::test::read_file(dir.file("stats.json")));
+    const json live = comparable(stats.at("scoreboard"), true);
+    REQUIRE(live.size() == 16);
     uint64_t shots = 0, hits = 0, kills = 0;
-    for (const json& l : board.at("lines")) {
+    for (const json& l : live) {
         shots += l.at("shots").get<uint64_t>();
         hits += l.at("hits").get<uint64_t>();
         kills += l.at("kills").get<uint64_t>();
@@ -77,18 +88,24 @@ TEST_CASE("16 hunter bots play a match: every client's final scoreboard is the s
     CHECK(shots > 0);
     CHECK(hits > 0);
     CHECK(kills > 0);
-    // The text summary prints it with accuracy.
-    CHECK(bots.output().find("scoreboard (final, from the server's Bye; winner: ") != std::string::npos);
-    CHECK(bots.output().find("accuracy") != std::string::npos);
-
-    // The server's own, and each client's, line for line.
-    const json stats = json::parse(arena::test::read_file(dir.file("stats.json")));
-    const json live = comparable(stats.at("scoreboard"), true);
-    CHECK(comparable(board.at("lines"), true) == live);
-    for (const json& seen : report.at("scoreboards")) {
-        INFO(seen.at("bot"));
-        CHECK(seen.at("final") == true);
-        CHECK(comparable(seen.at("lines"), true) == live);
+    for (const auto& [name, count] : {std::pair<std::string, uint32_t>{"bot", 12}, {"ws", 4}}) {
+        INFO(name);
+        const json report = json::parse(arena::test::read_file(dir.file(name + ".json")));
+        CHECK(report.at("joined") == count);
+        CHECK(report.at("failed") == 0);
+        const json& board = report.at("scoreboard");
+        CHECK(board.at("final") == true);
+        CHECK(board.at("clients") == count);
+        CHECK(board.at("agreeing") == count);  // every client saw the same final scoreboard
+        CHECK(board.at("game_events").get<uint64_t>() > 0);
+        CHECK(board.at("winner") == stats.at("winner"));
+        // The server's own, line for line, from every client.
+        CHECK(comparable(board.at("lines"), true) == live);
+        for (const json& seen : report.at("scoreboards")) {
+            INFO(seen.at("bot"));
+            CHECK(seen.at("final") == true);
+            CHECK(comparable(seen.at("lines"), true) == live);
+        }
     }
 
     // The recording replays to the same scoreboard (names aside: it holds player ids).
