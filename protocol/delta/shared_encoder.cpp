@@ -70,6 +70,7 @@ void shared_encoder::prepare(view state, std::optional<view> baseline_state, ela
     state_ = state;
     base_ = baseline_state;
     elapsed_ = elapsed;
+    last_valid_ = false;
     pool_.clear();
     stats_sink stats;
     base_to_state_.clear();
@@ -116,6 +117,22 @@ const shared_encoder::record& shared_encoder::added_record(std::uint32_t i) {
 
 void shared_encoder::encode(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
                             std::vector<std::uint8_t>& out) {
+    if (!base_) baseline = {};
+    // std::equal, not std::ranges::equal: the WebAssembly build's standard library lacks the latter.
+    if (last_valid_ && std::equal(current.begin(), current.end(), last_current_.begin(), last_current_.end()) &&
+        std::equal(baseline.begin(), baseline.end(), last_baseline_.begin(), last_baseline_.end())) {
+        out.assign(last_out_.begin(), last_out_.end());
+        return;
+    }
+    encode_walk(current, baseline, out);
+    last_current_.assign(current.begin(), current.end());
+    last_baseline_.assign(baseline.begin(), baseline.end());
+    last_out_.assign(out.begin(), out.end());
+    last_valid_ = true;
+}
+
+void shared_encoder::encode_walk(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
+                                 std::vector<std::uint8_t>& out) {
     // The walk: baseline bodies removed, changed or unchanged; current bodies not in the
     // baseline view are added. Both index lists follow id order, and so does base_to_state_.
     touches_.clear();

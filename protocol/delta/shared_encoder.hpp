@@ -31,6 +31,7 @@ public:
     // One client's view: `current` holds increasing indices into the state; `baseline` (ignored
     // without a baseline state) increasing indices into the baseline state, exactly the view
     // the client holds. Writes the encoding to out (cleared first; its capacity is reused).
+    // The encoding is a function of the prepared states and the two index lists alone.
     void encode(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
                 std::vector<std::uint8_t>& out);
 
@@ -57,6 +58,8 @@ public:
     [[nodiscard]] bool has_baseline() const noexcept { return base_.has_value(); }
 
 private:
+    void encode_walk(std::span<const std::uint32_t> current, std::span<const std::uint32_t> baseline,
+                     std::vector<std::uint8_t>& out);
     // A run of bits in pool_, starting at a word boundary; built on first use, since a tick's
     // clients together touch only the bodies near them (bits == none: not built yet).
     struct record {
@@ -96,6 +99,12 @@ private:
     };
     std::vector<own_change> own_changes_;  // encode_chosen: changes against a held state
     std::vector<std::uint8_t> kept_;       // encode_chosen: by position in current, kept as held
+    // The last encoding and the views it was for: clients whose views and baselines are the
+    // same (every client when each sees the whole world and they acknowledged the same tick)
+    // get the same bytes, copied instead of walked again.
+    bool last_valid_ = false;
+    std::vector<std::uint32_t> last_current_, last_baseline_;
+    std::vector<std::uint8_t> last_out_;
 };
 
 }  // namespace arena::protocol::delta

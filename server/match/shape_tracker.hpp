@@ -12,6 +12,7 @@
 // On a reliable stream without acknowledgements (clients of full BodyState snapshots) a
 // description sent is held: `reliable` makes a body known at once. Static bodies whose ids
 // the Welcome covered are never described: the Welcome carried them all.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,6 +28,8 @@ public:
         statics_below_ = below;
         known_.clear();
         pending_.clear();
+        last_view_.clear();
+        last_bodies_ = {};
     }
 
     // One snapshot at `tick` holding bodies[i] for each i of `view` (increasing indices of a
@@ -35,6 +38,15 @@ public:
     template <class Describe>
     void update(uint32_t tick, std::span<const world::body> bodies, std::span<const uint32_t> view, uint32_t acked,
                 bool reliable, Describe&& describe) {
+        // The common case, every body of the view known and the view as before, costs a
+        // comparison: ids grow and are never reused, so the same count and the same newest id
+        // mean the same bodies at the same indices.
+        const body_set now = bodies.empty() ? body_set{} : body_set{bodies.size(), bodies.back().id};
+        if (pending_.empty() && now == last_bodies_ &&
+            std::equal(view.begin(), view.end(), last_view_.begin(), last_view_.end()))
+            return;
+        last_bodies_ = now;
+        last_view_.assign(view.begin(), view.end());
         next_known_.clear();
         next_pending_.clear();
         size_t k = 0, p = 0;
@@ -68,6 +80,11 @@ public:
     [[nodiscard]] size_t pending() const { return pending_.size(); }
 
 private:
+    struct body_set {
+        size_t count = 0;
+        uint32_t newest_id = 0;
+        bool operator==(const body_set&) const = default;
+    };
     struct waiting {
         uint32_t id = 0;
         uint32_t entered = 0;  // the first snapshot tick of its current stay in the view
@@ -77,6 +94,8 @@ private:
     std::vector<waiting> pending_;  // increasing ids
     std::vector<uint32_t> next_known_;
     std::vector<waiting> next_pending_;
+    body_set last_bodies_;             // the world's bodies at the last update
+    std::vector<uint32_t> last_view_;  // and the view it was for
 };
 
 }  // namespace arena::match

@@ -76,6 +76,31 @@ TEST_CASE("a reliable stream describes each shape once per stay in the view", "[
     CHECK(described(t, 12, bodies, {0, 1, 2}, 0, true) == ids{7});
 }
 
+TEST_CASE("an unchanged view of held shapes describes nothing, a new body at the same index is described",
+          "[match][shapes]") {
+    match::shape_tracker t;
+    t.welcomed(1);
+    const auto bodies = bodies_with_ids({4, 7, 9});
+    CHECK(described(t, 3, bodies, {0, 1, 2}, 0, true) == ids{4, 7, 9});
+    CHECK(described(t, 6, bodies, {0, 1, 2}, 0, true).empty());
+    CHECK(described(t, 9, bodies, {0, 1, 2}, 0, true).empty());
+    // 9 removed and 12 spawned: the same count and the same indices, another body.
+    const auto replaced = bodies_with_ids({4, 7, 12});
+    CHECK(described(t, 12, replaced, {0, 1, 2}, 0, true) == ids{12});
+    // 4 removed: the same view's indices now name other bodies, all held.
+    const auto fewer = bodies_with_ids({7, 12});
+    CHECK(described(t, 15, fewer, {0, 1}, 0, true).empty());
+    CHECK(t.known() == 2);
+    // Over a lossy link the shortcut waits until every description was acknowledged.
+    match::shape_tracker lossy;
+    lossy.welcomed(1);
+    CHECK(described(lossy, 3, bodies, {0, 1, 2}, 0) == ids{4, 7, 9});
+    CHECK(described(lossy, 6, bodies, {0, 1, 2}, 0) == ids{4, 7, 9});
+    CHECK(described(lossy, 9, bodies, {0, 1, 2}, 3).empty());
+    CHECK(described(lossy, 12, bodies, {0, 1, 2}, 3).empty());
+    CHECK(lossy.pending() == 0);
+}
+
 TEST_CASE("static bodies the Welcome carried are never described, later ones are", "[match][shapes]") {
     const auto early = bodies_with_ids({2, 5}, {2});
     match::shape_tracker t;

@@ -175,3 +175,47 @@ TEST_CASE("Encodings of part of a view: chosen bodies exact, the baseline's othe
     CHECK(kept > 1000);
     CHECK(refreshed_from_held > 100);
 }
+
+TEST_CASE("A view encoded again gets the same bytes as a fresh encoder gives it, in any order of views",
+          "[protocol][delta]") {
+    rng r(20261201);
+    std::vector<ad::quantized_body> base;
+    for (std::uint32_t id = 1; id <= 400; ++id) base.push_back(ad::test::random_body(r, id));
+    std::vector<ad::quantized_body> state = base;
+    ad::test::evolve(state, r, 3, 60);
+    const ad::elapsed_time elapsed{3, 60};
+    const std::vector<std::uint32_t> all = random_view(r, state.size(), 1.0);
+    const std::vector<std::uint32_t> some = random_view(r, state.size(), 0.5);
+    const std::vector<std::uint32_t> held_all = random_view(r, base.size(), 1.0);
+    const std::vector<std::uint32_t> held_some = random_view(r, base.size(), 0.5);
+    struct call {
+        const std::vector<std::uint32_t>* current;
+        const std::vector<std::uint32_t>* held;
+    };
+    // Repeats, a change of only the current view, of only the held one, and back.
+    const std::vector<call> calls = {{&all, &held_all},  {&all, &held_all},   {&some, &held_all},
+                                     {&some, &held_all}, {&some, &held_some}, {&all, &held_all}};
+    for (const bool with_baseline : {true, false}) {
+        const std::optional<ad::view> baseline = with_baseline ? std::optional<ad::view>(base) : std::nullopt;
+        ad::shared_encoder reused;
+        reused.prepare(state, baseline, elapsed);
+        std::vector<std::uint8_t> bytes, fresh_bytes;
+        for (std::size_t n = 0; n < calls.size(); ++n) {
+            reused.encode(*calls[n].current, *calls[n].held, bytes);
+            ad::shared_encoder fresh;
+            fresh.prepare(state, baseline, elapsed);
+            fresh.encode(*calls[n].current, *calls[n].held, fresh_bytes);
+            INFO("baseline " << with_baseline << " call " << n);
+            REQUIRE(bytes == fresh_bytes);
+        }
+        // A new preparation forgets the last encoding: the same views against another state.
+        std::vector<ad::quantized_body> later = state;
+        ad::test::evolve(later, r, 2, 60);
+        reused.prepare(later, baseline, {5, 60});
+        reused.encode(all, held_all, bytes);
+        ad::shared_encoder fresh;
+        fresh.prepare(later, baseline, {5, 60});
+        fresh.encode(all, held_all, fresh_bytes);
+        REQUIRE(bytes == fresh_bytes);
+    }
+}
