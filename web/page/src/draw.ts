@@ -1,0 +1,201 @@
+// Draws one frame of the game on a 2D canvas: every body by its game kind and its shape (the
+// vertices the server sent, in the body's frame), centred on the own ship, y up, and the short
+// way round a wrapping world so that bodies across the seam show beside the ship.
+
+export interface Shape {
+  kind: number;
+  type: number; // circle 0, capsule 1, polygon 2, segment 3
+  radius: number;
+  vertices: number[];
+}
+export interface Body {
+  id: number;
+  x: number;
+  y: number;
+  angle: number;
+  kind: number;
+  predicted: boolean;
+  shape?: Shape;
+}
+export interface StaticBody {
+  x: number;
+  y: number;
+  angle: number;
+  shape: Shape;
+}
+export interface World {
+  wraps: boolean;
+  width: number;
+  height: number;
+}
+/** A flash where something happened, drawn for `life` ms. */
+export interface Flash {
+  x: number;
+  y: number;
+  born: number;
+  life: number;
+  radius: number;
+  colour: string;
+}
+
+// Asteroids' kinds (server/rules/asteroids_rules.hpp).
+export const KIND_SHIP = 1;
+export const KIND_ROCK = 2;
+export const KIND_BULLET = 3;
+
+/** Metres shown across the canvas's shorter side. */
+const VIEW_METRES = 90;
+
+export class Painter {
+  private readonly g: CanvasRenderingContext2D;
+  private scale = 1;
+  private cx = 0;
+  private cy = 0;
+  private world: World = { wraps: false, width: 0, height: 0 };
+
+  constructor(private readonly canvas: HTMLCanvasElement) {
+    const g = canvas.getContext('2d');
+    if (!g) throw new Error('no 2D canvas in this browser');
+    this.g = g;
+  }
+
+  frame(world: World, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number): void {
+    const { canvas, g } = this;
+    const dpr = window.devicePixelRatio || 1;
+    const w = Math.round(canvas.clientWidth * dpr);
+    const h = Math.round(canvas.clientHeight * dpr);
+    if (canvas.width !== w || canvas.height !== h) {
+      canvas.width = w;
+      canvas.height = h;
+    }
+    this.world = world;
+    this.scale = Math.min(w, h) / VIEW_METRES;
+    this.cx = centre.x;
+    this.cy = centre.y;
+    g.setTransform(1, 0, 0, 1, 0, 0);
+    g.fillStyle = '#05070d';
+    g.fillRect(0, 0, w, h);
+    this.grid(w, h);
+    for (const s of statics) this.body(s.x, s.y, s.angle, s.shape, '#556', '#334');
+    for (const b of bodies) this.drawBody(b);
+    for (const f of flashes) this.flash(f, now);
+  }
+
+  /** Canvas pixels of a world point, relative to the centre (the short way when wrapping). */
+  private toScreen(x: number, y: number): [number, number] {
+    let dx = x - this.cx;
+    let dy = y - this.cy;
+    if (this.world.wraps) {
+      dx -= Math.round(dx / this.world.width) * this.world.width;
+      dy -= Math.round(dy / this.world.height) * this.world.height;
+    }
+    return [this.canvas.width / 2 + dx * this.scale, this.canvas.height / 2 - dy * this.scale];
+  }
+
+  private grid(w: number, h: number): void {
+    const { g } = this;
+    const step = 10;
+    g.strokeStyle = '#111826';
+    g.lineWidth = 1;
+    g.beginPath();
+    const x0 = Math.floor((this.cx - w / 2 / this.scale) / step) * step;
+    const y0 = Math.floor((this.cy - h / 2 / this.scale) / step) * step;
+    for (let x = x0; x < this.cx + w / 2 / this.scale + step; x += step) {
+      const sx = w / 2 + (x - this.cx) * this.scale;
+      g.moveTo(sx, 0);
+      g.lineTo(sx, h);
+    }
+    for (let y = y0; y < this.cy + h / 2 / this.scale + step; y += step) {
+      const sy = h / 2 - (y - this.cy) * this.scale;
+      g.moveTo(0, sy);
+      g.lineTo(w, sy);
+    }
+    g.stroke();
+  }
+
+  private drawBody(b: Body): void {
+    if (b.kind === KIND_SHIP) return this.ship(b);
+    if (b.kind === KIND_BULLET) return this.dot(b, b.shape?.radius ?? 0.2, '#ffe27a');
+    if (b.shape) return this.body(b.x, b.y, b.angle, b.shape, b.kind === KIND_ROCK ? '#2a2f3a' : '#333', '#9aa3b5');
+    this.dot(b, 1, '#888');
+  }
+
+  /** A ship: an arrowhead pointing along its facing, inside its collision circle. */
+  private ship(b: Body): void {
+    const { g } = this;
+    const [sx, sy] = this.toScreen(b.x, b.y);
+    const r = (b.shape?.radius ?? 1.5) * this.scale;
+    g.save();
+    g.translate(sx, sy);
+    g.rotate(-b.angle);
+    g.beginPath();
+    g.moveTo(r, 0);
+    g.lineTo(-r * 0.8, r * 0.7);
+    g.lineTo(-r * 0.45, 0);
+    g.lineTo(-r * 0.8, -r * 0.7);
+    g.closePath();
+    g.fillStyle = b.predicted ? '#ffcf33' : '#5ec8ff';
+    g.fill();
+    g.strokeStyle = b.predicted ? '#fff3c4' : '#d4f0ff';
+    g.lineWidth = Math.max(1, this.scale * 0.12);
+    g.stroke();
+    g.restore();
+  }
+
+  private dot(b: Body, radius: number, colour: string): void {
+    const { g } = this;
+    const [sx, sy] = this.toScreen(b.x, b.y);
+    g.beginPath();
+    g.arc(sx, sy, Math.max(1.5, radius * this.scale), 0, 2 * Math.PI);
+    g.fillStyle = colour;
+    g.fill();
+  }
+
+  /** Any shape, from its vertices in the body's frame. */
+  private body(x: number, y: number, angle: number, shape: Shape, fill: string, stroke: string): void {
+    const { g } = this;
+    const [sx, sy] = this.toScreen(x, y);
+    const s = this.scale;
+    g.save();
+    g.translate(sx, sy);
+    g.rotate(-angle);
+    g.beginPath();
+    const v = shape.vertices;
+    if (shape.type === 2 && v.length >= 6) {
+      g.moveTo(v[0] * s, -v[1] * s);
+      for (let i = 2; i + 1 < v.length; i += 2) g.lineTo(v[i] * s, -v[i + 1] * s);
+      g.closePath();
+    } else if ((shape.type === 1 || shape.type === 3) && v.length >= 4) {
+      g.moveTo(v[0] * s, -v[1] * s);
+      g.lineTo(v[2] * s, -v[3] * s);
+      g.lineCap = 'round';
+      g.lineWidth = Math.max(1, 2 * shape.radius * s);
+      g.strokeStyle = stroke;
+      g.stroke();
+      g.restore();
+      return;
+    } else {
+      g.arc(0, 0, Math.max(1, shape.radius * s), 0, 2 * Math.PI);
+    }
+    g.fillStyle = fill;
+    g.fill();
+    g.strokeStyle = stroke;
+    g.lineWidth = Math.max(1, s * 0.15);
+    g.stroke();
+    g.restore();
+  }
+
+  private flash(f: Flash, now: number): void {
+    const t = (now - f.born) / f.life;
+    if (t < 0 || t > 1) return;
+    const { g } = this;
+    const [sx, sy] = this.toScreen(f.x, f.y);
+    g.beginPath();
+    g.arc(sx, sy, f.radius * (0.5 + 2 * t) * this.scale, 0, 2 * Math.PI);
+    g.globalAlpha = 1 - t;
+    g.strokeStyle = f.colour;
+    g.lineWidth = Math.max(2, this.scale * 0.5);
+    g.stroke();
+    g.globalAlpha = 1;
+  }
+}

@@ -1,0 +1,73 @@
+// The HUD: the player's score and lives, the scoreboard, and the connection's figures (ping,
+// snapshots a second, the prediction error). Written into the page's elements at most a few
+// times a second; the numbers are also data-* attributes so that tests read them exactly.
+
+export interface Line {
+  playerId: number;
+  name: string;
+  score: number;
+  kills: number;
+  deaths: number;
+  lives: number;
+  state: number; // playing 0, respawning 1, out 2
+}
+
+const STATE = ['', 'respawning', 'out'];
+
+function el(id: string): HTMLElement {
+  const e = document.getElementById(id);
+  if (!e) throw new Error(`the page has no #${id}`);
+  return e;
+}
+
+export class Hud {
+  private readonly score = el('score');
+  private readonly lives = el('lives');
+  private readonly board = el('scoreboard');
+  private readonly ping = el('ping');
+  private readonly rate = el('rate');
+  private readonly error = el('prediction-error');
+  private readonly status = el('status');
+
+  private shown = 0;
+
+  setStatus(text: string): void {
+    ++this.shown;
+    this.status.textContent = text;
+    this.status.hidden = text === '';
+  }
+
+  /** A message shown for two seconds, unless a lasting one replaces it. */
+  flashStatus(text: string): void {
+    this.setStatus(text);
+    const shown = ++this.shown;
+    setTimeout(() => {
+      if (this.shown === shown && this.status.textContent === text) this.setStatus('');
+    }, 2000);
+  }
+
+  players(own: number, lines: Line[]): void {
+    const me = lines.find((l) => l.playerId === own);
+    this.score.textContent = String(me?.score ?? 0);
+    this.score.dataset.value = String(me?.score ?? 0);
+    this.lives.textContent = me ? (me.state === 2 ? 'out' : String(me.lives)) : '–';
+    const sorted = [...lines].sort((a, b) => b.score - a.score || a.playerId - b.playerId);
+    const rows = sorted.slice(0, 10).map((l) => {
+      const tr = document.createElement('tr');
+      if (l.playerId === own) tr.className = 'own';
+      for (const text of [l.name || `#${l.playerId}`, String(l.score), `${l.kills}/${l.deaths}`, STATE[l.state] ?? '']) {
+        const td = document.createElement('td');
+        td.textContent = text;
+        tr.appendChild(td);
+      }
+      return tr;
+    });
+    this.board.replaceChildren(...rows);
+  }
+
+  figures(pingMs: number | null, snapshotsPerSecond: number, predictionErrorM: number | null): void {
+    this.ping.textContent = pingMs === null ? '–' : `${pingMs.toFixed(1)} ms`;
+    this.rate.textContent = `${snapshotsPerSecond.toFixed(0)}/s`;
+    this.error.textContent = predictionErrorM === null ? '–' : `${(predictionErrorM * 100).toFixed(1)} cm`;
+  }
+}

@@ -1,0 +1,137 @@
+// The page that plays Arena: joins the server it came from (ws://host/ws) with the name from
+// ?name=, sends the keyboard's controls (the SDK sends them once per server tick), and draws
+// what the SDK says to draw at each requestAnimationFrame: the own ship predicted with the
+// server's world in WebAssembly, everything else interpolated from the snapshots.
+// window.arenaPage holds the client and the page's figures, for tests and the console.
+import { connect } from './arena-sdk.mjs';
+import { Controls } from './controls.js';
+import { Body, Flash, Painter, StaticBody, World } from './draw.js';
+import { Hud, Line } from './hud.js';
+
+const FLASH_MS = 600;
+
+interface PageState {
+  client: unknown;
+  playerId: number;
+  entityId: number;
+  /** The own body as the last snapshot from the server had it (not predicted). */
+  serverOwn: { tick: number; x: number; y: number } | null;
+  /** The last snapshot's bodies as the server sent them (id, owner, pose). */
+  view: { tick: number; bodies: { id: number; owner: number; x: number; y: number }[] };
+  snapshots: number;
+  frames: number;
+  fps: number;
+  snapshotRate: number;
+  predictionError: number | null;
+  predictionErrorMax: number;
+  events: number;
+  bye: unknown;
+  error: string;
+}
+
+declare global {
+  interface Window {
+    arenaPage: PageState;
+  }
+}
+
+async function main(): Promise<void> {
+  const canvas = document.getElementById('game') as HTMLCanvasElement;
+  const painter = new Painter(canvas);
+  const hud = new Hud();
+  const controls = new Controls(window);
+  const params = new URLSearchParams(location.search);
+  const name = (params.get('name') ?? '').trim() || 'player';
+  const page: PageState = {
+    client: null, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
+    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, events: 0, bye: null, error: '',
+  };
+  window.arenaPage = page;
+
+  hud.setStatus(`joining as ${name}…`);
+  const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+  const client = await connect(`${scheme}//${location.host}/ws`, name, params.get('token') ?? '');
+  page.client = client;
+
+  let world: World = { wraps: false, width: 0, height: 0 };
+  let statics: StaticBody[] = [];
+  let flashes: Flash[] = [];
+  let snapshotTimes: number[] = [];
+  let frameTimes: number[] = [];
+  let centre = { x: 0, y: 0 };
+  // Where each body was last drawn: a game event names a body, not a place.
+  const lastSeen = new Map<number, { x: number; y: number; r: number }>();
+
+  const lines = (): Line[] => [...client.players.values()];
+  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[] }) => {
+    page.playerId = w.playerId;
+    page.entityId = w.entityId;
+    world = w.world;
+    statics = w.statics;
+    hud.setStatus('');
+  });
+  client.on('snapshot', (s: { tick: number; bodies: { id: number; owner: number; x: number; y: number }[]; predictionError: number | null }) => {
+    ++page.snapshots;
+    page.view = { tick: s.tick, bodies: s.bodies };
+    snapshotTimes.push(performance.now());
+    const own = s.bodies.find((b) => b.id === client.session.entityId);
+    page.entityId = client.session.entityId;
+    if (own) page.serverOwn = { tick: s.tick, x: own.x, y: own.y };
+    if (s.predictionError !== null) {
+      page.predictionError = s.predictionError;
+      page.predictionErrorMax = Math.max(page.predictionErrorMax, s.predictionError);
+    }
+  });
+  client.on('players', () => hud.players(page.playerId, lines()));
+  client.on('event', (e: { kind: number; body: number; player: number; size: number }) => {
+    ++page.events;
+    const at = lastSeen.get(e.body);
+    const born = performance.now();
+    // rock_hit 0, ship_destroyed 1, respawn 2, wave 3 (protocol GameEventKind).
+    if (e.kind === 1 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS * 2, radius: 3, colour: e.player === page.playerId ? '#ff5a4f' : '#ffa640' });
+    else if (e.kind === 0 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS, radius: at.r, colour: '#c9d3e6' });
+    else if (e.kind === 3) hud.flashStatus(`wave ${e.size}`);
+    else if (e.kind === 2 && e.player === page.playerId) hud.flashStatus('respawned');
+  });
+  client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[] }) => {
+    page.bye = b;
+    if (b.scoreboard.length > 0) hud.players(page.playerId, b.scoreboard);
+    const winner = b.scoreboard.find((l) => l.playerId === b.winner);
+    hud.setStatus(b.matchOver ? `match over${winner ? `: ${winner.name || '#' + winner.playerId} wins` : ''}` : `disconnected: ${b.reason}`);
+  });
+
+  const draw = (now: number) => {
+    const c = controls.read();
+    client.input(c.thrust, c.turn, c.buttons);
+    const state = client.stateAt(now);
+    const bodies = state.bodies as Body[];
+    if (state.own) centre = { x: state.own.x, y: state.own.y };
+    for (const b of bodies) lastSeen.set(b.id, { x: b.x, y: b.y, r: b.shape?.radius ?? 1 });
+    if (lastSeen.size > 4 * bodies.length + 64) {
+      const live = new Set(bodies.map((b) => b.id));
+      for (const id of lastSeen.keys()) if (!live.has(id)) lastSeen.delete(id);
+    }
+    flashes = flashes.filter((f) => now - f.born < f.life);
+    painter.frame(world, centre, statics, bodies, flashes, now);
+
+    ++page.frames;
+    frameTimes.push(now);
+    frameTimes = frameTimes.filter((t) => now - t < 1000);
+    snapshotTimes = snapshotTimes.filter((t) => now - t < 1000);
+    page.fps = frameTimes.length;
+    page.snapshotRate = snapshotTimes.length;
+    if (page.frames % 10 === 0) hud.figures(client.rtt, page.snapshotRate, page.predictionError);
+    if (!page.bye) requestAnimationFrame(draw);
+  };
+  requestAnimationFrame(draw);
+}
+
+main().catch((e: unknown) => {
+  const message = e instanceof Error ? e.message : String(e);
+  if (window.arenaPage) window.arenaPage.error = message;
+  const status = document.getElementById('status');
+  if (status) {
+    status.textContent = `cannot start: ${message}`;
+    status.hidden = false;
+  }
+});

@@ -1,0 +1,206 @@
+// The page in a real browser (Debian's chromium, headless, driven by npm's puppeteer-core)
+// against a real arena-server playing Asteroids, started with --http-port and no --web-root:
+// the build put the page in build/web, beside bin/. A second page joins as a separate client
+// and watches the probe's ship in its own snapshots from the server.
+//   ARENA_SERVER   the arena-server binary       ARENA_CHROMIUM  the browser
+//   NODE_PATH      the page's node_modules (puppeteer-core, from web/page/package-lock.json)
+import { spawn } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+
+const need = (name) => {
+  const v = process.env[name];
+  if (!v) throw new Error(`${name} is not set (run this test through ctest)`);
+  return v;
+};
+const server = need('ARENA_SERVER');
+const chromium = need('ARENA_CHROMIUM');
+const webDir = need('ARENA_WEB_DIR');
+// ES modules ignore NODE_PATH: load the CommonJS build of puppeteer-core from there.
+const require = createRequire(join(need('NODE_PATH'), 'page-test.cjs'));
+const puppeteer = require('puppeteer-core');
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+async function until(what, check, timeoutMs = 8000) {
+  const end = Date.now() + timeoutMs;
+  for (;;) {
+    const v = await check();
+    if (v) return v;
+    if (Date.now() > end) throw new Error(`timed out waiting for ${what}`);
+    await sleep(50);
+  }
+}
+
+const dir = mkdtempSync(join(tmpdir(), 'arena-page-'));
+const statsFile = join(dir, 'stats.json');
+let proc;
+let exited;
+let browser;
+let url;
+
+before(async () => {
+  const config = join(dir, 'game.json');
+  writeFileSync(config, '{"preset": "asteroids", "rules": "asteroids"}');
+  // --view-radius 0: the watcher sees the whole world, wherever the probe's ship is.
+  proc = spawn(server, ['--port', '0', '--http-port', '0', '--config', config, '--stats-json', statsFile, '--drain-grace', '1',
+    '--view-radius', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  exited = new Promise((resolve) => proc.on('exit', (code, signal) => resolve({ code, signal })));
+  let out = '';
+  let err = '';
+  proc.stdout.on('data', (d) => (out += d));
+  proc.stderr.on('data', (d) => (err += d));
+  const port = await until('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1]).catch((e) => {
+    throw new Error(`${e.message}\n${out}\n${err}`);
+  });
+  url = `http://127.0.0.1:${port}/`;
+  browser = await puppeteer.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox', '--disable-gpu'] });
+});
+
+after(async () => {
+  await browser?.close();
+  if (proc && proc.exitCode === null) proc.kill('SIGKILL');
+  rmSync(dir, { recursive: true, force: true });
+});
+
+async function open(name) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 800, height: 600 });
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  await page.goto(`${url}?name=${name}`);
+  await until(`${name}'s welcome`, () => page.evaluate(() => window.arenaPage?.snapshots > 2 && window.arenaPage.playerId > 0)).catch((e) => {
+    throw new Error(`${e.message}: ${problems.join('; ')}`);
+  });
+  return { page, problems };
+}
+
+const canvasHash = (page) => page.evaluate(() => document.getElementById('game').toDataURL()).then((d) => createHash('sha256').update(d).digest('hex'));
+
+test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server\'s score', { timeout: 60000 }, async () => {
+  const index = await (await fetch(url)).text();
+  assert.match(index, /<canvas id="game"/, 'the server serves the page at / with no --web-root');
+
+  const { page: probe, problems } = await open('probe');
+  const probeId = await probe.evaluate(() => window.arenaPage.playerId);
+  assert.equal(await probe.evaluate(() => window.arenaPage.client.players.get(window.arenaPage.playerId)?.name), 'probe');
+
+  // The canvas changes between frames (the rocks drift, the HUD's figures tick).
+  const a = await canvasHash(probe);
+  await sleep(300);
+  const b = await canvasHash(probe);
+  assert.notEqual(a, b, 'the canvas is redrawn');
+  if (process.env.ARENA_PAGE_SCREENSHOT) await probe.screenshot({ path: process.env.ARENA_PAGE_SCREENSHOT });
+
+  // The watcher opens in a second tab; the probe's tab comes back to the front, where the
+  // browser runs its requestAnimationFrame (and its input timer) at full rate.
+  const { page: watcher } = await open('watcher');
+  await probe.bringToFront();
+
+  // Holding the up arrow moves the probe's ship, as the watcher's snapshots from the server show.
+  const probeShip = () => watcher.evaluate((id) => {
+    const s = window.arenaPage.view.bodies.find((b) => b.owner === id);
+    return s ? { tick: window.arenaPage.view.tick, x: s.x, y: s.y } : null;
+  }, probeId);
+  const start = await until('the probe\'s ship in the watcher\'s view', probeShip).catch(async (e) => {
+    const seen = await watcher.evaluate(() => window.arenaPage.view.bodies.map((b) => `${b.id}:${b.owner}`).join(' '));
+    const own = await probe.evaluate(() => `${window.arenaPage.playerId}/${window.arenaPage.entityId}`);
+    throw new Error(`${e.message}: probe ${own}, watcher sees ${seen}`);
+  });
+  await probe.keyboard.down('ArrowUp');
+  await sleep(1500);
+  await probe.keyboard.up('ArrowUp');
+  const moved = await until('a later snapshot', async () => {
+    const s = await probeShip();
+    return s && s.tick > start.tick + 60 ? s : null;
+  });
+  const width = await probe.evaluate(() => window.arenaPage.client.session.world.width);
+  const wrap = (d) => d - Math.round(d / width) * width;
+  const distance = Math.hypot(wrap(moved.x - start.x), wrap(moved.y - start.y));
+  console.log(`thrust for 1.5 s moved the probe's ship ${distance.toFixed(1)} m in the server's snapshots`);
+  assert.ok(distance > 5, `the ship moved ${distance} m`);
+
+  // Space fires: the server's count of shots rises (arena_shots_total on /metrics; the
+  // scoreboard lines the clients get carry shots only along with a change of score or lives).
+  const shots = async () => Number((await (await fetch(`${url}metrics`)).text()).match(/^arena_shots_total (\d+)$/m)?.[1] ?? NaN);
+  const shotsBefore = await shots();
+  assert.ok(Number.isFinite(shotsBefore), 'the server exports arena_shots_total');
+  await probe.keyboard.down(' ');
+  await probe.keyboard.down('ArrowLeft');
+  await sleep(2000);
+  await probe.keyboard.up(' ');
+  await probe.keyboard.up('ArrowLeft');
+  const shotsAfter = await until('shots counted by the server', async () => {
+    const n = await shots();
+    return n > shotsBefore ? n : 0;
+  });
+  console.log(`space held for 2 s: ${shotsAfter - shotsBefore} shots counted by the server`);
+
+  // Aim at the nearest rock and fire, with the keys, until the HUD shows points (or 6 s pass):
+  // then the comparison with the server's score below is not one of two zeros.
+  const aim = () => probe.evaluate(() => {
+    const { client } = window.arenaPage;
+    const state = client.stateAt(performance.now());
+    const own = state.own;
+    const { width, height } = client.session.world;
+    if (!own) return null;
+    let best = null;
+    for (const b of state.bodies) {
+      if (b.kind !== 2) continue;
+      const dx = b.x - own.x - Math.round((b.x - own.x) / width) * width;
+      const dy = b.y - own.y - Math.round((b.y - own.y) / height) * height;
+      const d = Math.hypot(dx, dy);
+      if (!best || d < best.d) best = { d, bearing: Math.atan2(dy, dx) };
+    }
+    if (!best) return null;
+    const diff = best.bearing - own.angle;
+    return Math.atan2(Math.sin(diff), Math.cos(diff));
+  });
+  const hudScore = () => probe.evaluate(() => Number(document.getElementById('score').dataset.value));
+  await probe.keyboard.down(' ');
+  let held = null;
+  for (const end = Date.now() + 6000; Date.now() < end && (await hudScore()) === 0;) {
+    const diff = await aim();
+    const want = diff === null || Math.abs(diff) < 0.05 ? null : diff > 0 ? 'ArrowLeft' : 'ArrowRight';
+    if (want !== held) {
+      if (held) await probe.keyboard.up(held);
+      if (want) await probe.keyboard.down(want);
+      held = want;
+    }
+    await sleep(30);
+  }
+  if (held) await probe.keyboard.up(held);
+  await probe.keyboard.up(' ');
+
+  const figures = await probe.evaluate(() => ({
+    fps: window.arenaPage.fps,
+    frames: window.arenaPage.frames,
+    snapshotRate: window.arenaPage.snapshotRate,
+    errorMax: window.arenaPage.predictionErrorMax,
+    hud: document.getElementById('hud').innerText,
+  }));
+  console.log(`frames per second ${figures.fps} (${figures.frames} drawn), snapshots ${figures.snapshotRate}/s, ` +
+              `prediction error max ${(figures.errorMax * 100).toFixed(1)} cm`);
+  console.log(`arena_core.wasm ${statSync(join(webDir, 'arena_core.wasm')).size} bytes, page.mjs ${statSync(join(webDir, 'page.mjs')).size} bytes`);
+  assert.ok(figures.fps > 0, 'requestAnimationFrame draws');
+  assert.match(figures.hud, /ping \d+(\.\d+)? ms/);
+  assert.match(figures.hud, /probe/, 'the scoreboard names the probe');
+
+  // The server ends the match; the HUD's score is the server's, as --stats-json has it.
+  proc.kill('SIGTERM');
+  const bye = await until('the Bye', () => probe.evaluate(() => window.arenaPage.bye));
+  assert.match(bye.reason, /SIGTERM/);
+  await exited;
+  const stats = JSON.parse(readFileSync(statsFile, 'utf8'));
+  const line = stats.scoreboard.find((l) => l.name === 'probe');
+  assert.ok(line, 'the probe is on the server\'s scoreboard');
+  assert.ok(line.shots >= shotsAfter, `the server counted ${line.shots} of the probe's shots`);
+  assert.equal(await hudScore(), line.score, 'the HUD shows the server\'s score');
+  console.log(`score ${line.score} on the HUD and in the server's --stats-json, ${line.shots} shots`);
+  assert.deepEqual(problems, [], 'no errors in the page');
+});
