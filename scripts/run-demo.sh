@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job of `make run`: arena-server with simulated players against it, showing their
 # live figures, then the server's own summary. Afterwards the lecture's example through
-# arena-sim. DEMO_BOTS and DEMO_SECONDS change the size and length.
+# arena-sim. DEMO_BOTS and DEMO_SECONDS change the size and length; the page to play in a
+# browser is on DEMO_HTTP_PORT (default 0: a free port), printed as a URL.
 set -euo pipefail
 bin=${1:-build/bin}
 bots=${DEMO_BOTS:-50}
@@ -15,17 +16,25 @@ trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording" "$c
 echo '{"preset": "asteroids", "rules": "asteroids"}' > "$config"
 
 echo "== arena-server (asteroids) with $bots bots for $seconds s =="
-"$bin/arena-server" --port 0 --config "$config" --max-players "$bots" --duration $((seconds + 3)) \
-  --stats-json "$stats" --record "$recording" > "$log" 2> "$log.err" &
+# Room for a few players from the browser beside the bots.
+"$bin/arena-server" --port 0 --config "$config" --max-players $((bots + 4)) --duration $((seconds + 3)) \
+  --http-port "${DEMO_HTTP_PORT:-0}" --stats-json "$stats" --record "$recording" > "$log" 2> "$log.err" &
 server=$!
 port=""
+http_port=""
 for _ in $(seq 100); do
   port=$(sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$log")
-  [ -n "$port" ] && break
+  http_port=$(sed -n 's/^http listening on .*:\([0-9]*\)$/\1/p' "$log")
+  [ -n "$port" ] && [ -n "$http_port" ] && break
   sleep 0.1
 done
-[ -n "$port" ] || { echo "arena-server did not start:"; cat "$log.err"; exit 1; }
+[ -n "$port" ] && [ -n "$http_port" ] || { echo "arena-server did not start:"; cat "$log.err"; exit 1; }
 echo "listening on 127.0.0.1:$port"
+# The page is there when the build made it (build/web, beside bin/: the browser SDK is on).
+if [ -f "$bin/../web/index.html" ]; then
+  echo "play in a browser while the bots play: http://127.0.0.1:$http_port/?name=you"
+  echo "  (arrows turn and thrust, space fires, shift boosts; DEMO_SECONDS=300 make run for a longer match)"
+fi
 "$bin/arena-bots" --port "$port" --bots "$bots" --duration "$seconds" --behavior mixed --seed 1
 wait "$server"
 echo "== the server's log =="
