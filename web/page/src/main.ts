@@ -9,6 +9,12 @@ import { Body, Flash, Painter, StaticBody, World } from './draw.js';
 import { Hud, Line } from './hud.js';
 
 const FLASH_MS = 600;
+const SAMPLES = 4096;
+
+function keep(samples: number[], value: number): void {
+  if (samples.length >= SAMPLES) samples.shift();
+  samples.push(value);
+}
 
 interface PageState {
   client: unknown;
@@ -24,6 +30,10 @@ interface PageState {
   snapshotRate: number;
   predictionError: number | null;
   predictionErrorMax: number;
+  /** The last SAMPLES prediction errors (m) and times from a snapshot's arrival to the first
+   *  frame drawn after it (ms), for percentiles. */
+  predictionErrors: number[];
+  arrivalToRender: number[];
   events: number;
   bye: unknown;
   error: string;
@@ -44,7 +54,7 @@ async function main(): Promise<void> {
   const name = (params.get('name') ?? '').trim() || 'player';
   const page: PageState = {
     client: null, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
-    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, events: 0, bye: null, error: '',
+    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, bye: null, error: '',
   };
   window.arenaPage = page;
 
@@ -59,6 +69,7 @@ async function main(): Promise<void> {
   let snapshotTimes: number[] = [];
   let frameTimes: number[] = [];
   let centre = { x: 0, y: 0 };
+  let unrendered: number | null = null; // when the oldest snapshot not yet drawn arrived
   // Where each body was last drawn: a game event names a body, not a place.
   const lastSeen = new Map<number, { x: number; y: number; r: number }>();
 
@@ -72,6 +83,7 @@ async function main(): Promise<void> {
   });
   client.on('snapshot', (s: { tick: number; bodies: { id: number; owner: number; x: number; y: number }[]; predictionError: number | null }) => {
     ++page.snapshots;
+    unrendered ??= performance.now();
     page.view = { tick: s.tick, bodies: s.bodies };
     snapshotTimes.push(performance.now());
     const own = s.bodies.find((b) => b.id === client.session.entityId);
@@ -80,6 +92,7 @@ async function main(): Promise<void> {
     if (s.predictionError !== null) {
       page.predictionError = s.predictionError;
       page.predictionErrorMax = Math.max(page.predictionErrorMax, s.predictionError);
+      keep(page.predictionErrors, s.predictionError);
     }
   });
   client.on('players', () => hud.players(page.playerId, lines()));
@@ -113,6 +126,8 @@ async function main(): Promise<void> {
     }
     flashes = flashes.filter((f) => now - f.born < f.life);
     painter.frame(world, centre, statics, bodies, flashes, now);
+    if (unrendered !== null) keep(page.arrivalToRender, performance.now() - unrendered);
+    unrendered = null;
 
     ++page.frames;
     frameTimes.push(now);

@@ -182,12 +182,19 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
     frames: window.arenaPage.frames,
     snapshotRate: window.arenaPage.snapshotRate,
     errorMax: window.arenaPage.predictionErrorMax,
+    errors: window.arenaPage.predictionErrors,
+    arrival: window.arenaPage.arrivalToRender,
     hud: document.getElementById('hud').innerText,
   }));
-  console.log(`frames per second ${figures.fps} (${figures.frames} drawn), snapshots ${figures.snapshotRate}/s, ` +
-              `prediction error max ${(figures.errorMax * 100).toFixed(1)} cm`);
+  const pct = (xs, p) => [...xs].sort((x, y) => x - y)[Math.min(xs.length - 1, Math.floor((p / 100) * xs.length))];
+  console.log(`frames per second ${figures.fps} (${figures.frames} drawn), snapshots ${figures.snapshotRate}/s`);
+  console.log(`prediction error p99 ${(pct(figures.errors, 99) * 100).toFixed(1)} cm, max ${(figures.errorMax * 100).toFixed(1)} cm ` +
+              `(${figures.errors.length} snapshots)`);
+  console.log(`snapshot arrival to render p50 ${pct(figures.arrival, 50).toFixed(1)} ms, p99 ${pct(figures.arrival, 99).toFixed(1)} ms ` +
+              `(${figures.arrival.length} snapshots)`);
   console.log(`arena_core.wasm ${statSync(join(webDir, 'arena_core.wasm')).size} bytes, page.mjs ${statSync(join(webDir, 'page.mjs')).size} bytes`);
   assert.ok(figures.fps > 0, 'requestAnimationFrame draws');
+  assert.ok(figures.arrival.length > 0 && figures.errors.length > 0, 'the page measures its snapshots');
   assert.match(figures.hud, /ping \d+(\.\d+)? ms/);
   assert.match(figures.hud, /probe/, 'the scoreboard names the probe');
 
