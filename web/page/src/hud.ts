@@ -52,9 +52,12 @@ export class Hud {
     this.score.dataset.value = String(me?.score ?? 0);
     this.lives.textContent = me ? (me.state === 2 ? 'out' : String(me.lives)) : '–';
     const sorted = [...lines].sort((a, b) => b.score - a.score || a.playerId - b.playerId);
-    const rows = sorted.slice(0, 10).map((l) => {
+    // The top ten, and the own line below them when it is not among them.
+    const shown = sorted.slice(0, 10);
+    if (me && !shown.includes(me)) shown.push(me);
+    const rows = shown.map((l) => {
       const tr = document.createElement('tr');
-      if (l.playerId === own) tr.className = 'own';
+      if (l.playerId === own) tr.className = 'me';
       for (const text of [l.name || `#${l.playerId}`, String(l.score), `${l.kills}/${l.deaths}`, STATE[l.state] ?? '']) {
         const td = document.createElement('td');
         td.textContent = text;
