@@ -10,6 +10,7 @@ export interface Shape {
 }
 export interface Body {
   id: number;
+  owner: number;
   x: number;
   y: number;
   angle: number;
@@ -52,6 +53,7 @@ export class Painter {
   private cx = 0;
   private cy = 0;
   private world: World = { wraps: false, width: 0, height: 0 };
+  private player = 0;
 
   constructor(private readonly canvas: HTMLCanvasElement) {
     const g = canvas.getContext('2d');
@@ -59,7 +61,8 @@ export class Painter {
     this.g = g;
   }
 
-  frame(world: World, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number): void {
+  /** `player`: the own player's id; its ship is drawn in gold, predicted or not. */
+  frame(world: World, player: number, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number): void {
     const { canvas, g } = this;
     const dpr = window.devicePixelRatio || 1;
     const w = Math.round(canvas.clientWidth * dpr);
@@ -69,6 +72,7 @@ export class Painter {
       canvas.height = h;
     }
     this.world = world;
+    this.player = player;
     this.scale = Math.min(w, h) / VIEW_METRES;
     this.cx = centre.x;
     this.cy = centre.y;
@@ -134,9 +138,10 @@ export class Painter {
     g.lineTo(-r * 0.45, 0);
     g.lineTo(-r * 0.8, -r * 0.7);
     g.closePath();
-    g.fillStyle = b.predicted ? '#ffcf33' : '#5ec8ff';
+    const mine = b.predicted || b.owner === this.player;
+    g.fillStyle = mine ? '#ffcf33' : '#5ec8ff';
     g.fill();
-    g.strokeStyle = b.predicted ? '#fff3c4' : '#d4f0ff';
+    g.strokeStyle = mine ? '#fff3c4' : '#d4f0ff';
     g.lineWidth = Math.max(1, this.scale * 0.12);
     g.stroke();
     g.restore();

@@ -5,7 +5,7 @@
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 import { connect } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
-import { Body, Flash, Painter, StaticBody, World } from './draw.js';
+import { Body, Flash, KIND_SHIP, Painter, StaticBody, World } from './draw.js';
 import { Hud, Line } from './hud.js';
 
 const FLASH_MS = 600;
@@ -118,14 +118,17 @@ async function main(): Promise<void> {
     client.input(c.thrust, c.turn, c.buttons);
     const state = client.stateAt(now);
     const bodies = state.bodies as Body[];
-    if (state.own) centre = { x: state.own.x, y: state.own.y };
+    // After a respawn the player has a new body, which the SDK does not predict yet (its
+    // README, "Not yet"): it is drawn interpolated, and the view still follows it.
+    const mine = state.own ?? bodies.find((b) => b.owner === page.playerId && b.kind === KIND_SHIP);
+    if (mine) centre = { x: mine.x, y: mine.y };
     for (const b of bodies) lastSeen.set(b.id, { x: b.x, y: b.y, r: b.shape?.radius ?? 1 });
     if (lastSeen.size > 4 * bodies.length + 64) {
       const live = new Set(bodies.map((b) => b.id));
       for (const id of lastSeen.keys()) if (!live.has(id)) lastSeen.delete(id);
     }
     flashes = flashes.filter((f) => now - f.born < f.life);
-    painter.frame(world, centre, statics, bodies, flashes, now);
+    painter.frame(world, page.playerId, centre, statics, bodies, flashes, now);
     if (unrendered !== null) keep(page.arrivalToRender, performance.now() - unrendered);
     unrendered = null;
 
