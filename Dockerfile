@@ -16,6 +16,9 @@ RUN apt-get update \
  && useradd --system --uid 10001 --no-create-home arena
 COPY --from=build /src/build/bin/arena-server /src/build/bin/arena-replay /src/build/bin/arena-sim \
      /src/build/bin/arena-token /src/build/bin/arena-healthcheck /usr/local/bin/
+# The page that plays the game, served at / with --http-port (the default web root for a
+# program in /usr/local/bin is /usr/local/web or /usr/local/share/arena/web).
+COPY --from=build /src/build/web /usr/local/share/arena/web
 USER arena
 # 7777: the game (TCP; UDP too when started with --udp-port 7777). 8080: /metrics and /healthz (HTTP), for Prometheus and the probes.
 EXPOSE 7777/tcp 7777/udp 8080/tcp
