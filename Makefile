@@ -77,7 +77,7 @@ test: build format-check lint-docker
 FUZZ_BUILD ?= build-fuzz
 FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta fuzz_replay_cost fuzz_udp_gate
 ifdef CI
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 45
 else
 FUZZ_SECONDS ?= 15
 endif
