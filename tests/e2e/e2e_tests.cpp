@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "process.hpp"
+#include "servers.hpp"
 
 namespace {
 
 using arena::test::child_process;
+using arena::test::figure;
 using arena::test::temp_dir;
 using namespace std::chrono_literals;
 using nlohmann::json;
@@ -64,10 +66,6 @@ bots_run run_bots(const temp_dir& dir, unsigned port, std::vector<std::string> a
     const std::string text = arena::test::read_file(report_file);
     if (!text.empty()) r.report = json::parse(text);
     return r;
-}
-
-double figure(const json& report, const std::string& name, const std::string& stat) {
-    return report.at("figures").at(name).at(stat).get<double>();
 }
 
 // The per-bot snapshot rate of the well-behaved bots stays at the server's 20/s: no bot

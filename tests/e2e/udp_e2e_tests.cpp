@@ -8,36 +8,23 @@
 #include <vector>
 
 #include "process.hpp"
+#include "servers.hpp"
 
 namespace {
 
 using arena::test::child_process;
+using arena::test::figure;
 using arena::test::temp_dir;
 using namespace std::chrono_literals;
 using nlohmann::json;
 
 const std::string bin_dir = ARENA_BIN_DIR;
 
-struct udp_server {
-    child_process process;
-    unsigned tcp_port = 0;
-    unsigned udp_port = 0;
-
+// arena-server with --udp-port beside TCP.
+struct udp_server : arena::test::server_beside_tcp {
     explicit udp_server(const temp_dir& dir)
-        : process(bin_dir + "/arena-server",
-                  {"--bind", "127.0.0.1", "--port", "0", "--udp-port", "0", "--preset", "asteroids", "--seed", "1",
-                   "--duration", "30"},
-                  dir.file("server.log")) {
-        const auto t = arena::test::wait_for_listening(process, 5s);
-        const auto u = arena::test::wait_for_port_line(process, "udp listening on", 5s);
-        if (!t || !u) FAIL("arena-server did not print both listening lines: " << process.output());
-        tcp_port = *t;
-        udp_port = *u;
-    }
-    ~udp_server() {
-        process.signal(SIGTERM);
-        process.wait_for(3s);
-    }
+        : server_beside_tcp(bin_dir, dir, "--udp-port", "udp listening on"), udp_port(second_port) {}
+    const unsigned udp_port;
 };
 
 // Starts arena-bots; the report is read once it exited.
@@ -64,10 +51,6 @@ struct bots {
         return json::parse(text);
     }
 };
-
-double figure(const json& report, const std::string& name, const std::string& stat) {
-    return report.at("figures").at(name).at(stat).get<double>();
-}
 
 void check_everyone_played(const json& j, int n) {
     CHECK(j.at("joined") == n);

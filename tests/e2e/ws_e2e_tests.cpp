@@ -8,36 +8,23 @@
 #include <vector>
 
 #include "process.hpp"
+#include "servers.hpp"
 
 namespace {
 
 using arena::test::child_process;
+using arena::test::figure;
 using arena::test::temp_dir;
 using namespace std::chrono_literals;
 using nlohmann::json;
 
 const std::string bin_dir = ARENA_BIN_DIR;
 
-struct ws_server {
-    child_process process;
-    unsigned tcp_port = 0;
-    unsigned http_port = 0;
-
+// arena-server with --http-port beside TCP.
+struct ws_server : arena::test::server_beside_tcp {
     explicit ws_server(const temp_dir& dir)
-        : process(bin_dir + "/arena-server",
-                  {"--bind", "127.0.0.1", "--port", "0", "--http-port", "0", "--preset", "asteroids", "--seed", "1",
-                   "--duration", "30"},
-                  dir.file("server.log")) {
-        const auto t = arena::test::wait_for_listening(process, 5s);
-        const auto h = arena::test::wait_for_port_line(process, "http listening on", 5s);
-        if (!t || !h) FAIL("arena-server did not print both listening lines: " << process.output());
-        tcp_port = *t;
-        http_port = *h;
-    }
-    ~ws_server() {
-        process.signal(SIGTERM);
-        process.wait_for(3s);
-    }
+        : server_beside_tcp(bin_dir, dir, "--http-port", "http listening on"), http_port(second_port) {}
+    const unsigned http_port;
 };
 
 json run_bots(const temp_dir& dir, const std::string& name, unsigned port, std::vector<std::string> args,
@@ -53,10 +40,6 @@ json run_bots(const temp_dir& dir, const std::string& name, unsigned port, std::
     const std::string text = arena::test::read_file(report_file);
     REQUIRE(!text.empty());
     return json::parse(text);
-}
-
-double figure(const json& report, const std::string& name, const std::string& stat) {
-    return report.at("figures").at(name).at(stat).get<double>();
 }
 
 }  // namespace
