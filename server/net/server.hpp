@@ -14,6 +14,7 @@
 #include "server/match/match.hpp"
 #include "server/net/duration_histogram.hpp"
 #include "server/net/tick_clock.hpp"
+#include "server/net/udp_refusal_log.hpp"
 #include "server/ops/accept_backoff.hpp"
 #include "server/ops/histogram.hpp"
 #include "server/ops/metrics.hpp"
@@ -72,6 +73,7 @@ public:
     void count_peer_closed();
     void count_fragmented_snapshot() { ++process_.snapshots_fragmented; }
     void count_snapshot_copy() { ++process_.snapshot_copies; }
+    void count_udp_refusal(udp_refusal why) { ++process_.udp_refused[std::string(udp_refusal_key(why))]; }
     // From the other transports (WebSocket): a connection handed to the match opened, or is
     // gone. Counted with the TCP sessions (connections_open, the peak), and shutdown waits for it.
     void transport_opened();

@@ -28,27 +28,27 @@ datagram_kind classify_datagram(std::span<const std::uint8_t> datagram, bool che
     return (datagram[header] & command_mask) == command_connect ? datagram_kind::connect : datagram_kind::not_a_peer;
 }
 
-bool connect_gate::admit(std::span<const std::uint8_t> datagram, const std::string& address, int64_t now_ns) {
+gate_verdict connect_gate::judge(std::span<const std::uint8_t> datagram, const std::string& address, int64_t now_ns) {
     switch (classify_datagram(datagram)) {
         case datagram_kind::peer:
-            return true;
+            return gate_verdict::pass;
         case datagram_kind::too_short:
         case datagram_kind::not_a_peer:
             ++refused_shape_;
-            return false;
+            return gate_verdict::refuse_shape;
         case datagram_kind::connect:
             break;
     }
     if (datagram.size() < min_connect_datagram) {
         ++refused_shape_;
-        return false;
+        return gate_verdict::refuse_shape;
     }
     if (buckets_.size() >= limits_.max_addresses && !buckets_.contains(address)) forget_oldest();
     if (!buckets_[address].take(now_ns, limits_.connects_per_second, limits_.burst)) {
         ++refused_rate_;
-        return false;
+        return gate_verdict::refuse_rate;
     }
-    return true;
+    return gate_verdict::connect;
 }
 
 void connect_gate::forget_oldest() {

@@ -32,6 +32,14 @@ enum class datagram_kind : std::uint8_t {
 // larger than what came in (no amplification from a spoofed source).
 inline constexpr std::size_t min_connect_datagram = 4 + 48;
 
+// What the gate decided about one datagram, and why when it refused.
+enum class gate_verdict : std::uint8_t {
+    pass,          // to a peer slot: ENet judges it
+    connect,       // a connect within its address's rate: ENet takes a peer slot for it, if one is free
+    refuse_shape,  // too short, a connect too small to answer, or not a connect though to no peer
+    refuse_rate,   // a connect over its address's rate
+};
+
 struct connect_gate_limits {
     double connects_per_second = 4;  // per source address, after the burst
     double burst = 16;
@@ -44,9 +52,14 @@ class connect_gate {
 public:
     explicit connect_gate(connect_gate_limits limits = {}) : limits_(limits) {}
 
-    // True: hand the datagram to ENet. `address`: the source without its port (a flood from
+    // pass or connect: hand the datagram to ENet. `address`: the source without its port (a flood from
     // many ports of one host shares one bucket).
-    [[nodiscard]] bool admit(std::span<const std::uint8_t> datagram, const std::string& address, int64_t now_ns);
+    [[nodiscard]] gate_verdict judge(std::span<const std::uint8_t> datagram, const std::string& address,
+                                     int64_t now_ns);
+    [[nodiscard]] bool admit(std::span<const std::uint8_t> datagram, const std::string& address, int64_t now_ns) {
+        const gate_verdict verdict = judge(datagram, address, now_ns);
+        return verdict == gate_verdict::pass || verdict == gate_verdict::connect;
+    }
 
     std::uint64_t refused_rate() const { return refused_rate_; }
     std::uint64_t refused_shape() const { return refused_shape_; }

@@ -16,7 +16,6 @@ namespace {
 // The transport whose host is being serviced: ENet's intercept callback has no user pointer.
 // One thread services one host at a time.
 thread_local udp_transport* servicing = nullptr;
-thread_local connect_gate* servicing_gate = nullptr;
 thread_local int64_t servicing_now_ns = 0;
 
 std::string address_text(const ENetAddress& address) {
@@ -137,7 +136,6 @@ void udp_transport::service() {
     ENetEvent event{};
     for (int i = 0; i < max_events_per_service; ++i) {
         servicing = this;
-        servicing_gate = &gate_;
         servicing_now_ns = now_ns();
         const int got = enet_host_service(host_, &event, 0);
         servicing = nullptr;
@@ -159,9 +157,47 @@ void udp_transport::service() {
 }
 
 int ENET_CALLBACK udp_transport::intercept(ENetHost* host, ENetEvent*) {
-    if (servicing == nullptr || servicing_gate == nullptr) return 0;
+    if (servicing == nullptr) return 0;
+    return servicing->admit(host) ? 0 : 1;  // 1: ENet drops the datagram
+}
+
+bool udp_transport::admit(ENetHost* host) {
     const std::span<const uint8_t> datagram(host->receivedData, host->receivedDataLength);
-    return servicing_gate->admit(datagram, address_text(host->receivedAddress), servicing_now_ns) ? 0 : 1;
+    const std::string address = address_text(host->receivedAddress);
+    switch (gate_.judge(datagram, address, servicing_now_ns)) {
+        case gate_verdict::pass:
+            return true;
+        case gate_verdict::refuse_shape:
+            return refuse(udp_refusal::shape, address);
+        case gate_verdict::refuse_rate:
+            return refuse(udp_refusal::rate, address);
+        case gate_verdict::connect:
+            break;
+    }
+    // ENet drops a connect it has no slot for without a word: say so here.
+    return has_free_peer_slot(host, host->receivedAddress) ? true : refuse(udp_refusal::peer_limit, address);
+}
+
+bool udp_transport::refuse(udp_refusal why, const std::string& address) {
+    owner_.count_udp_refusal(why);
+    if (auto line = refusals_.refused(why, address, servicing_now_ns)) log_line("%s", line->c_str());
+    return false;
+}
+
+bool udp_transport::has_free_peer_slot(const ENetHost* host, const ENetAddress& from) {
+    // ENet's own rule for a connect (enet_protocol_handle_connect): a disconnected slot, and
+    // fewer than duplicatePeers slots already held by the same host.
+    bool free_slot = false;
+    size_t same_host = 0;
+    for (size_t i = 0; i < host->peerCount; ++i) {
+        const ENetPeer& peer = host->peers[i];
+        if (peer.state == ENET_PEER_STATE_DISCONNECTED) {
+            free_slot = true;
+        } else if (peer.state != ENET_PEER_STATE_CONNECTING && peer.address.host == from.host) {
+            ++same_host;
+        }
+    }
+    return free_slot && same_host < host->duplicatePeers;
 }
 
 void udp_transport::on_connect(ENetPeer* peer) {

@@ -15,6 +15,7 @@
 #include "server/match/match.hpp"
 #include "server/net/udp_connect_gate.hpp"
 #include "server/net/udp_peer_connection.hpp"
+#include "server/net/udp_refusal_log.hpp"
 
 namespace arena::net {
 
@@ -75,6 +76,11 @@ private:
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator forget(
         std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator it);
     static int ENET_CALLBACK intercept(ENetHost* host, ENetEvent* event);
+    // The datagram ENet just read: true to let ENet handle it; false refuses it (counted, and
+    // logged at most once per reason per interval).
+    bool admit(ENetHost* host);
+    bool refuse(udp_refusal why, const std::string& address);
+    static bool has_free_peer_slot(const ENetHost* host, const ENetAddress& from);
 
     boost::asio::io_context& io_;
     server& owner_;
@@ -84,6 +90,7 @@ private:
     boost::asio::posix::stream_descriptor readable_;
     boost::asio::steady_timer timer_;
     connect_gate gate_;
+    udp_refusal_log refusals_;
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>> connections_;  // by id, in connect order
     uint64_t next_id_ = 1;
     bool flush_posted_ = false;

@@ -26,6 +26,11 @@ void report(const process_counters& c, match::figure_sink& out) {
     out.counter({"snapshot_copies", "arena_snapshot_copies_total",
                  "UDP snapshot datagrams sent again, a tick after the first (--udp-snapshot-copies)."},
                 c.snapshot_copies);
+    out.counters_by({"udp_refused", "arena_udp_refused_datagrams_total",
+                     "UDP datagrams refused before ENet read them, by reason: shape (not a connect, or "
+                     "too short to answer), rate (an address's connects over its rate), peer_limit (no "
+                     "free peer slot)."},
+                    "reason", c.udp_refused);
 }
 
 }  // namespace arena::ops

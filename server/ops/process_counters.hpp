@@ -4,6 +4,8 @@
 // tick times and traffic. One report() names them for --stats-json, /metrics and the stats log
 // line (server/match/figures.hpp).
 #include <cstdint>
+#include <map>
+#include <string>
 
 #include "server/match/figures.hpp"
 
@@ -20,16 +22,17 @@ struct stats_window {
 };
 
 struct process_counters {
-    uint64_t connections_open = 0;      // client connections now, joined or not, TCP and UDP
-    uint64_t connections_peak = 0;      // most at once
-    uint64_t bytes_in = 0;              // read from clients
-    uint64_t bytes_out = 0;             // written to clients
-    uint64_t messages_in = 0;           // verified protocol messages read
-    uint64_t messages_out = 0;          // frames written
-    uint64_t tick_overruns = 0;         // ticks dropped because the loop fell behind
-    uint64_t snapshots_fragmented = 0;  // UDP snapshots over the datagram budget, sent as fragments
-    uint64_t snapshot_copies = 0;       // UDP snapshot datagrams sent again (--udp-snapshot-copies)
-    stats_window window;                // filled for the stats log line only
+    uint64_t connections_open = 0;                // client connections now, joined or not, TCP and UDP
+    uint64_t connections_peak = 0;                // most at once
+    uint64_t bytes_in = 0;                        // read from clients
+    uint64_t bytes_out = 0;                       // written to clients
+    uint64_t messages_in = 0;                     // verified protocol messages read
+    uint64_t messages_out = 0;                    // frames written
+    uint64_t tick_overruns = 0;                   // ticks dropped because the loop fell behind
+    uint64_t snapshots_fragmented = 0;            // UDP snapshots over the datagram budget, sent as fragments
+    uint64_t snapshot_copies = 0;                 // UDP snapshot datagrams sent again (--udp-snapshot-copies)
+    std::map<std::string, uint64_t> udp_refused;  // datagrams refused before ENet read them, by reason
+    stats_window window;                          // filled for the stats log line only
 };
 
 void report(const process_counters& c, match::figure_sink& out);

@@ -22,17 +22,6 @@ using protocol::Payload;
 
 namespace {
 
-std::string temp_path(const std::string& name) {
-    return "/tmp/arena-main-test-" + std::to_string(::getpid()) + "-" + name;
-}
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 // arena-server with `args`, bounded in time whatever it does with them.
 command_result server_run(const std::string& args) {
     return run_command("timeout 20 " + program("arena-server") + " --port 0 " + args + " 2>&1");

@@ -12,6 +12,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <thread>
 
@@ -226,6 +227,15 @@ bool test_client::closed_by_peer(std::chrono::milliseconds timeout) {
 const protocol::Message* message_of(const std::vector<uint8_t>& frame) {
     auto verified = protocol::verify_message(frame, protocol::server_frame_limits);
     return verified ? verified.value : nullptr;
+}
+
+std::string temp_path(const std::string& name) {
+    return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace arena::test

@@ -77,4 +77,9 @@ private:
 // The verified Message inside a frame read by test_client (aligned copy kept by the caller).
 const protocol::Message* message_of(const std::vector<uint8_t>& frame);
 
+// A path in /tmp unique to this test process, for a --stats-json or --record file.
+std::string temp_path(const std::string& name);
+// A whole file; empty when missing.
+std::string read_file(const std::string& path);
+
 }  // namespace arena::test

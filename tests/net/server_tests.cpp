@@ -56,10 +56,6 @@ int count_snapshots(test_client& c, std::chrono::milliseconds duration) {
     return count;
 }
 
-std::string temp_path(const std::string& name) {
-    return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name;
-}
-
 }  // namespace
 
 TEST_CASE("a client joins, sends inputs and receives snapshots that follow them", "[net][e2e]") {
@@ -213,8 +209,7 @@ TEST_CASE("SIGTERM says bye to every client, writes the stats and exits 0", "[ne
     REQUIRE(bye);
     CHECK(protocol::decode_bye(*message_of(*bye)).value.reason.find("SIGTERM") != std::string::npos);
     CHECK(server.stop(0) == 0);
-    std::ifstream in(stats);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = read_file(stats);
     CHECK(text.find("\"ticks\"") != std::string::npos);
     CHECK(text.find("\"joins\": 1") != std::string::npos);
     std::remove(stats.c_str());
@@ -317,8 +312,7 @@ TEST_CASE("a thousand connections opened at once are refused beyond the limits w
     CHECK(count_snapshots(good.client, 1000ms) >= 18);
     crowd.clear();
     REQUIRE(server.stop(SIGTERM) == 0);
-    std::ifstream in(stats);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = read_file(stats);
     CHECK(text.find("\"max_pending_handshakes\": 32") != std::string::npos);
     // Not server_full: the server was never full. The oldest waiting connections gave their
     // slots to newer ones.

@@ -81,3 +81,12 @@ TEST_CASE("a spoofed flood from many addresses costs bounded memory", "[net][udp
     CHECK(admitted == 100'000);  // each address's first connect is within its burst
     CHECK(gate.addresses() <= 1000);
 }
+
+TEST_CASE("the gate's verdict says why it refused, and which admitted datagrams are connects", "[net][udp]") {
+    connect_gate gate({.connects_per_second = 4, .burst = 1, .max_addresses = 16});
+    CHECK(gate.judge(std::vector<uint8_t>{0x80, 0x03, 0, 0, 0x06, 0, 0, 0}, "10.0.0.1", 0) == gate_verdict::pass);
+    CHECK(gate.judge(connect_datagram(), "10.0.0.1", 0) == gate_verdict::connect);
+    CHECK(gate.judge(connect_datagram(), "10.0.0.1", 0) == gate_verdict::refuse_rate);
+    CHECK(gate.judge(connect_datagram(min_connect_datagram - 1), "10.0.0.2", 0) == gate_verdict::refuse_shape);
+    CHECK(gate.judge(std::vector<uint8_t>{1}, "10.0.0.2", 0) == gate_verdict::refuse_shape);
+}

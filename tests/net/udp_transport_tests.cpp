@@ -205,7 +205,8 @@ TEST_CASE("a UDP peer that connects and never says Hello is dropped after the ha
 
 TEST_CASE("random datagrams, truncated ENet headers and a connect flood leave an honest UDP client its snapshots",
           "[net][udp][hostile]") {
-    udp_server server({"--preset", "asteroids"});
+    const std::string stats_path = temp_path("udp-flood-stats.json");
+    udp_server server({"--preset", "asteroids", "--stats-json", stats_path});
     udp_client honest(server.udp_port);
     join(honest);
     const play_figures calm = play(honest, 1000ms);
@@ -256,5 +257,28 @@ TEST_CASE("random datagrams, truncated ENet headers and a connect flood leave an
     CHECK(flood.size() >= 100);
     CHECK(connected >= 1);
     CHECK(connected <= 40);
+    // The refusals were logged, one line per reason at first, and counted by reason.
+    CHECK(server.process.log_shows("udp: refused a datagram from 127.0.0.1: over its address's connect rate"));
+    CHECK(server.process.log_shows("udp: refused a datagram from 127.0.0.1: not an ENet connect"));
     CHECK(server.process.stop(SIGTERM) == 0);
+    const std::string stats = read_file(stats_path);
+    CHECK(stats.find("\"udp_refused\": {") != std::string::npos);
+    CHECK(stats.find("\"rate\": ") != std::string::npos);
+    CHECK(stats.find("\"shape\": ") != std::string::npos);
+    std::remove(stats_path.c_str());
+}
+
+TEST_CASE("a UDP connect with every peer slot taken is refused, logged and counted", "[net][udp]") {
+    const std::string stats_path = temp_path("udp-peer-limit-stats.json");
+    // --max-connections 1: ENet gets one peer slot.
+    udp_server server({"--max-connections", "1", "--stats-json", stats_path});
+    udp_client first(server.udp_port);
+    join(first, "first");
+    udp_client second(server.udp_port, 1500ms);
+    CHECK_FALSE(second.connected());
+    CHECK(server.process.log_shows("udp: refused a datagram from 127.0.0.1: every peer slot is taken"));
+    CHECK(server.process.stop(SIGTERM) == 0);
+    const std::string stats = read_file(stats_path);
+    CHECK(stats.find("\"peer_limit\": ") != std::string::npos);
+    std::remove(stats_path.c_str());
 }
