@@ -26,6 +26,7 @@ session::session(boost::asio::ip::tcp::socket socket, server& owner, match::matc
       match_(match),
       id_(id),
       peer_(describe(socket_)),
+      output_(owner.options().max_control_frames),
       wake_(socket_.get_executor()),
       linger_(socket_.get_executor()) {}
 
@@ -92,30 +93,21 @@ bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
 boost::asio::awaitable<void> session::writer() {
     try {
         while (!closed_) {
-            if (!control_.empty()) {
-                protocol::frame_bytes frame = std::move(control_.front());
-                control_.pop_front();
-                if (!frame.empty()) {
-                    co_await boost::asio::async_write(socket_, boost::asio::buffer(frame), use_awaitable);
-                    owner_.count_out(frame.size());
+            if (auto bytes = output_.next()) {
+                if (!bytes->empty()) {
+                    co_await boost::asio::async_write(socket_, boost::asio::buffer(bytes->data(), bytes->size()),
+                                                      use_awaitable);
+                    owner_.count_out(bytes->size());
                 }
-            } else if (snapshot_pending_) {
-                std::swap(snapshot_next_, snapshot_writing_);
-                snapshot_pending_ = false;
-                co_await boost::asio::async_write(socket_, boost::asio::buffer(snapshot_writing_), use_awaitable);
-                owner_.count_out(snapshot_writing_.size());
+                output_.written(owner_.now_ns());
             } else if (closing_) {
                 close_now();
                 co_return;
             } else {
-                waiting_since_ns_ = 0;
                 wake_.expires_at(boost::asio::steady_timer::time_point::max());
                 boost::system::error_code ec;
                 co_await wake_.async_wait(boost::asio::redirect_error(use_awaitable, ec));
-                continue;
             }
-            // A write completed: that is progress.
-            waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.now_ns();
         }
     } catch (const boost::system::system_error& e) {
         if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, e.code().message()});
@@ -125,33 +117,25 @@ boost::asio::awaitable<void> session::writer() {
 
 void session::send(protocol::frame_bytes frame) {
     if (closing_) return;
-    if (control_.size() >= owner_.options().max_control_frames) {
+    if (!output_.push_control(std::move(frame), owner_.now_ns())) {
         // Not from inside the match's call that sent this: the refusal goes through the match.
         boost::asio::post(socket_.get_executor(), [self = shared_from_this()] {
             self->match_.reject(*self, {RejectCode::slow_consumer, "too many messages waiting to be sent"});
         });
         return;
     }
-    control_.push_back(std::move(frame));
-    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.now_ns();
     wake_.cancel();
 }
 
 void session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
-    snapshot.copy_with_ack(ack_sequence, snapshot_next_);
-    snapshot_queued();
+    output_.put_snapshot(snapshot, ack_sequence, owner_.now_ns());
+    wake_.cancel();
 }
 
 void session::send_snapshot_frame(std::span<const uint8_t> frame) {
     if (closing_) return;
-    snapshot_next_.assign(frame.begin(), frame.end());
-    snapshot_queued();
-}
-
-void session::snapshot_queued() {
-    snapshot_pending_ = true;
-    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.now_ns();
+    output_.put_snapshot_frame(frame, owner_.now_ns());
     wake_.cancel();
 }
 
@@ -171,9 +155,7 @@ void session::close_after(protocol::frame_bytes last_frame) {
     if (closing_) return;
     closing_ = true;
     // Whatever was waiting is dropped: only the last word goes out, then the socket closes.
-    control_.clear();
-    snapshot_pending_ = false;
-    control_.push_back(std::move(last_frame));
+    output_.keep_only(std::move(last_frame));
     wake_.cancel();
     auto self = shared_from_this();
     linger_.expires_after(std::chrono::nanoseconds(owner_.options().close_grace_ns));
@@ -192,10 +174,6 @@ void session::close_now() {
     wake_.cancel();
     linger_.cancel();
     owner_.on_gone(*this);
-}
-
-int64_t session::stalled_ns(int64_t now_ns) const {
-    return waiting_since_ns_ == 0 ? 0 : now_ns - waiting_since_ns_;
 }
 
 }  // namespace arena::net

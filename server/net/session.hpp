@@ -1,18 +1,19 @@
 #pragma once
 // One TCP client: read once per tick (read_available: frames, verifies, hands each message to
-// the match), and a writer coroutine, the only one that writes to the socket. Output is bounded: control
-// messages queue up to a limit, and a snapshot waiting to be sent is replaced by a newer one,
-// so a client that does not read costs at most one snapshot and a few small frames.
+// the match), and a writer coroutine, the only one that writes to the socket. Output is bounded
+// (bounded_output.hpp): control messages queue up to a limit, and a snapshot waiting to be sent
+// is replaced by a newer one, so a client that does not read costs at most one snapshot and a
+// few small frames.
 #include <array>
 #include <boost/asio.hpp>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <string>
 
 #include "protocol/framing.hpp"
 #include "server/match/connection.hpp"
 #include "server/match/match.hpp"
+#include "server/net/bounded_output.hpp"
 
 namespace arena::net {
 
@@ -36,7 +37,7 @@ public:
     std::string_view peer() const override { return peer_; }
 
     // Nanoseconds that output has waited without a byte written (0 when nothing waits).
-    int64_t stalled_ns(int64_t now_ns) const;
+    int64_t stalled_ns(int64_t now_ns) const { return output_.stalled_ns(now_ns); }
     uint64_t id() const { return id_; }
     bool closing() const { return closing_; }
 
@@ -46,7 +47,6 @@ private:
     boost::asio::awaitable<void> writer();
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
-    void snapshot_queued();  // snapshot_next_ holds a new snapshot: wake the writer
 
     boost::asio::ip::tcp::socket socket_;
     server& owner_;
@@ -54,13 +54,9 @@ private:
     uint64_t id_;
     std::string peer_;
     protocol::frame_reader reader_;
-    std::deque<protocol::frame_bytes> control_;  // in order, bounded
-    std::vector<uint8_t> snapshot_next_;         // newest snapshot not yet being written
-    std::vector<uint8_t> snapshot_writing_;
-    bool snapshot_pending_ = false;
+    bounded_output output_;
     bool closing_ = false;
     bool closed_ = false;
-    int64_t waiting_since_ns_ = 0;      // when output began to wait unwritten; 0 = nothing waits
     boost::asio::steady_timer wake_;    // wakes the writer
     boost::asio::steady_timer linger_;  // bounds how long a closing session may flush
 };

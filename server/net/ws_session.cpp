@@ -33,6 +33,7 @@ ws_session::ws_session(beast::tcp_stream stream, web_transport& owner, uint64_t 
       match_(owner.owner().match()),
       id_(id),
       peer_(std::move(peer)),
+      output_(owner.owner().options().max_control_frames),
       wake_(ws_.get_executor()),
       linger_(ws_.get_executor()) {}
 
@@ -164,17 +165,17 @@ bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
 boost::asio::awaitable<void> ws_session::writer() {
     boost::system::error_code ec;
     while (!closed_) {
-        if (!control_.empty()) {
-            protocol::frame_bytes frame = std::move(control_.front());
-            control_.pop_front();
-            if (frame.empty()) continue;
-            co_await ws_.async_write(boost::asio::buffer(frame), use_ec(ec));
-            if (!ec) owner_.owner().count_out(frame.size());
-        } else if (snapshot_pending_) {
-            std::swap(snapshot_next_, snapshot_writing_);
-            snapshot_pending_ = false;
-            co_await ws_.async_write(boost::asio::buffer(snapshot_writing_), use_ec(ec));
-            if (!ec) owner_.owner().count_out(snapshot_writing_.size());
+        if (auto bytes = output_.next()) {
+            if (!bytes->empty()) {
+                co_await ws_.async_write(boost::asio::buffer(bytes->data(), bytes->size()), use_ec(ec));
+                if (ec) {
+                    if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
+                    close_now();
+                    co_return;
+                }
+                owner_.owner().count_out(bytes->size());
+            }
+            output_.written(owner_.owner().now_ns());
         } else if (closing_) {
             // The last word is out: the closing handshake, bounded by the handshake timeout
             // (and the linger timer).
@@ -182,18 +183,10 @@ boost::asio::awaitable<void> ws_session::writer() {
             close_now();
             co_return;
         } else {
-            waiting_since_ns_ = 0;
             wake_.expires_at(boost::asio::steady_timer::time_point::max());
             co_await wake_.async_wait(use_ec(ec));
             ec = {};
-            continue;
         }
-        if (ec) {
-            if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
-            close_now();
-            co_return;
-        }
-        waiting_since_ns_ = (control_.empty() && !snapshot_pending_) ? 0 : owner_.owner().now_ns();
     }
 }
 
@@ -206,30 +199,22 @@ void ws_session::reject_later(match::rejection why) {
 
 void ws_session::send(protocol::frame_bytes frame) {
     if (closing_) return;
-    if (control_.size() >= owner_.owner().options().max_control_frames) {
+    if (!output_.push_control(std::move(frame), owner_.owner().now_ns())) {
         reject_later({RejectCode::slow_consumer, "too many messages waiting to be sent"});
         return;
     }
-    control_.push_back(std::move(frame));
-    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.owner().now_ns();
     wake_.cancel();
 }
 
 void ws_session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
-    snapshot.copy_with_ack(ack_sequence, snapshot_next_);
-    snapshot_queued();
+    output_.put_snapshot(snapshot, ack_sequence, owner_.owner().now_ns());
+    wake_.cancel();
 }
 
 void ws_session::send_snapshot_frame(std::span<const uint8_t> frame) {
     if (closing_) return;
-    snapshot_next_.assign(frame.begin(), frame.end());
-    snapshot_queued();
-}
-
-void ws_session::snapshot_queued() {
-    snapshot_pending_ = true;
-    if (waiting_since_ns_ == 0) waiting_since_ns_ = owner_.owner().now_ns();
+    output_.put_snapshot_frame(frame, owner_.owner().now_ns());
     wake_.cancel();
 }
 
@@ -248,9 +233,7 @@ void ws_session::close_with_result(std::string_view reason, const protocol::matc
 void ws_session::close_after(protocol::frame_bytes last_frame) {
     if (closing_) return;
     closing_ = true;
-    control_.clear();
-    snapshot_pending_ = false;
-    control_.push_back(std::move(last_frame));
+    output_.keep_only(std::move(last_frame));
     wake_.cancel();
     linger_.expires_after(std::chrono::nanoseconds(owner_.owner().options().close_grace_ns));
     linger_.async_wait([self = shared_from_this()](const boost::system::error_code& e) {

@@ -14,7 +14,6 @@
 #include <boost/beast/http/message.hpp>
 #include <boost/beast/websocket/stream.hpp>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +22,7 @@
 #include "server/match/connection.hpp"
 #include "server/match/match.hpp"
 #include "server/match/token_bucket.hpp"
+#include "server/net/bounded_output.hpp"
 
 namespace arena::net {
 
@@ -45,7 +45,7 @@ public:
     void close_with_result(std::string_view reason, const protocol::match_result& result) override;
     std::string_view peer() const override { return peer_; }
 
-    int64_t stalled_ns(int64_t now_ns) const { return waiting_since_ns_ == 0 ? 0 : now_ns - waiting_since_ns_; }
+    int64_t stalled_ns(int64_t now_ns) const { return output_.stalled_ns(now_ns); }
     uint64_t id() const { return id_; }
     bool closing() const { return closing_; }
 
@@ -57,7 +57,6 @@ private:
     void reject_later(match::rejection why);
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
-    void snapshot_queued();
 
     boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
     web_transport& owner_;
@@ -68,14 +67,10 @@ private:
     bool frame_in_message_ = false;  // the current message already held its one frame
     match::token_bucket pings_;
     bool ping_refused_ = false;
-    std::deque<protocol::frame_bytes> control_;
-    std::vector<uint8_t> snapshot_next_;
-    std::vector<uint8_t> snapshot_writing_;
-    bool snapshot_pending_ = false;
+    bounded_output output_;
     bool opened_ = false;  // handed to the match (and counted)
     bool closing_ = false;
     bool closed_ = false;
-    int64_t waiting_since_ns_ = 0;
     boost::asio::steady_timer wake_;
     boost::asio::steady_timer linger_;
 };
