@@ -13,9 +13,9 @@
 // forwarded from the store buffer, so the load waited for the stores (several such stalls a
 // body). On a copy the fields stay in registers. Same operations in the same order, so the same
 // bits. 100k bodies, min of 200: 1.54 → 0.98 ms, against 0.77 + 0.31 ms for the world's own two
-// passes; the 1M-body pass went from 2.2–3.0× a memcpy of its bytes to 1.5–1.7× (bench/README.md).
-// Those two passes measured slower with the copy (0.77 → 1.10 and 0.31 → 0.31 ms): neither reads
-// back what it stored, so they keep the reference.
+// passes; the 1M-body pass went from 2.1–3.0× a memcpy of its bytes to 1.3–1.7× (bench/README.md).
+// Those two passes measured slower with the copy (0.77 → 1.10 and 0.29–0.31 → 0.31–0.32 ms):
+// neither reads back what it stored, so they keep the reference.
 #include <cmath>
 #include <span>
 
