@@ -87,15 +87,24 @@ def pyramid_table(rows):
     if not pyr:
         return
     print()
-    print("Pyramids: 1 m boxes, μ 0.6, Δt 1/60 s, 8 velocity + 3 position iterations, Box2D sleeping off;")
-    print("CPU ms per step (the thread's CPU time, best of the runs), engines alternating in one process.")
+    print("Pyramids (Box2D v3's benchmark scenes and steps): 1 m boxes, μ 0.6, gravity −10 m/s², steps of 1/60 s")
+    print("in %d sub-steps of 8 velocity + 3 position iterations, Box2D sleeping off; CPU ms per step of 1/60 s"
+          % pyr[0].get("sub_steps", 1))
+    print("(the thread's CPU time, best of the runs), engines alternating in one process. Standing: every box")
+    print("of a pyramid ends within 0.5 m of its start; drift: the farthest box, m.")
     print()
-    print("| scene | boxes | Arena ms/step | Box2D 2.4.1 ms/step | Arena / Box2D | standing (Arena, Box2D) | target |")
-    print("|---|---:|---:|---:|---:|---|---|")
+    print("| scene | boxes | steps | Arena ms/step | Box2D 2.4.1 ms/step | Arena / Box2D | standing (Arena, Box2D) | drift (Arena, Box2D) | target |")
+    print("|---|---:|---:|---:|---:|---:|---|---|---|")
     scenes = []
     for r in pyr:
         if r["scene"] not in scenes:
             scenes.append(r["scene"])
+
+    def standing(r):
+        if "pyramids" not in r:
+            return "yes" if r["standing"] else "**fell**"
+        return "%d/%d" % (r["pyramids_standing"], r["pyramids"]) + ("" if r["standing"] else " **fell**")
+
     for name in scenes:
         ours = next((r for r in pyr if r["scene"] == name and r["engine"] == "arena"), None)
         theirs = next((r for r in pyr if r["scene"] == name and r["engine"] != "arena"), None)
@@ -103,9 +112,11 @@ def pyramid_table(rows):
             continue
         ratio = ours["cpu_ms_per_step"] / theirs["cpu_ms_per_step"]
         target = "≤ 0.5×: " + ok(ratio <= 0.5 and ours["standing"]) if name == "large_pyramid" else ""
-        print("| %s | %d | %.3f | %.3f | %.2f× | %s, %s | %s |" % (
-            name, ours["boxes"], ours["cpu_ms_per_step"], theirs["cpu_ms_per_step"], ratio,
-            "yes" if ours["standing"] else "**fell**", "yes" if theirs["standing"] else "**fell**", target))
+        drift = "%.3f, %.3f" % (ours.get("worst_box_drift_m", ours["worst_top_drift_m"]),
+                                theirs.get("worst_box_drift_m", theirs["worst_top_drift_m"]))
+        print("| %s | %d | %d | %.3f | %.3f | %.2f× | %s, %s | %s | %s |" % (
+            name, ours["boxes"], ours["steps"], ours["cpu_ms_per_step"], theirs["cpu_ms_per_step"], ratio,
+            standing(ours), standing(theirs), drift, target))
 
 
 PHASES = ["inputs", "forces_velocities", "broadphase", "narrow_phase", "solver", "positions", "correction"]
