@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/world/chain_manifold.hpp"
 #include "server/world/manifold.hpp"
 #include "server/world/splitmix64.hpp"
 
@@ -148,8 +149,10 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
                 shape other_circle;
                 const body& other = bodies[e.index];
                 if (!should_collide(b.filter, other.filter)) return;
-                const manifold m = collide(*own, transform_of(b, i, b.position, scratch),
-                                           shape_of(other, scene.pool, other_circle), e.xf, spec);
+                const shape& fixed = shape_of(other, scene.pool, other_circle);
+                const transform xf = transform_of(b, i, b.position, scratch);
+                const manifold m = fixed.chain.linked ? collide_chain_segment(*own, xf, fixed, e.xf, spec)
+                                                      : collide(*own, xf, fixed, e.xf, spec);
                 if (m.count == 0) return;
                 contact c = make_contact(i, e.index, m, b.position, other.position);
                 c.friction = mix_friction(b.friction, other.friction);

@@ -217,8 +217,15 @@ std::optional<uint32_t> world::add_body(body b, const shape& s) {
 }
 
 std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> points, const body_material& material) {
+    // A chain whose last point is its first is a loop: its first and last segments are
+    // neighbours too.
+    const size_t n = points.size();
+    const bool loop = n >= 4 && points.front() == points.back();
+    // A segment of no length has no normal: refused before any body is added.
+    for (size_t k = 0; k + 1 < n; ++k)
+        if (points[k] == points[k + 1]) return std::nullopt;
     std::vector<uint32_t> ids;
-    for (size_t k = 0; k + 1 < points.size(); ++k) {
+    for (size_t k = 0; k + 1 < n; ++k) {
         const vec2 mid = (points[k] + points[k + 1]) * 0.5f;
         body b;
         b.mass = 0;
@@ -229,7 +236,17 @@ std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> poin
         b.friction = material.friction;
         b.drag_area = 0;
         b.position = mid;
-        const std::optional<uint32_t> id = add_body(b, make_segment(points[k] - mid, points[k + 1] - mid));
+        shape s = make_segment(points[k] - mid, points[k + 1] - mid);
+        s.chain.linked = true;
+        if (k > 0 || loop) {
+            s.chain.has_prev = true;
+            s.chain.prev = points[k > 0 ? k - 1 : n - 2] - mid;
+        }
+        if (k + 2 < n || loop) {
+            s.chain.has_next = true;
+            s.chain.next = points[k + 2 < n ? k + 2 : 1] - mid;
+        }
+        const std::optional<uint32_t> id = add_body(b, s);
         if (!id) return std::nullopt;
         ids.push_back(*id);
     }
