@@ -113,7 +113,7 @@ body_extent world::integrate_velocities() {
 
 void world::detect_collisions(const body_extent& extent) {
     if (statics_dirty_) {
-        statics_.build(bodies_, shapes_);
+        statics_.build(bodies_, shapes_, config_);
         statics_dirty_ = false;
     }
     detect_contacts({bodies_, shapes_, &statics_}, make_grid(extent, bodies_.size(), config_), config_, scratch_,
