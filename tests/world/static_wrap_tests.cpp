@@ -91,6 +91,40 @@ TEST_CASE("a box slides across the seam on a chain that crosses it", "[world][wr
     slide_across_the_seam(w);
 }
 
+TEST_CASE("a box slides with a = −μ·g along a chain that goes round the world", "[world][wrap][chain]") {
+    // 20 segments of 2 m from x = 0 to x = 40, the first point one world width before the last:
+    // the chain's ends are neighbours across the seam, so the box crosses it as any other joint.
+    world w(wrap_world({0, -9.81f}), 0);
+    std::vector<vec2> points;
+    for (int k = 0; k <= 20; ++k) points.push_back({2 * static_cast<real>(k), 10});
+    body_material ground = slippery();
+    ground.friction = 0.2f;
+    const auto ids = w.add_chain(points, ground);
+    REQUIRE(ids);
+    CHECK(w.shape_of(*w.find(ids->front())).chain.has_prev);
+    CHECK(w.shape_of(*w.find(ids->back())).chain.has_next);
+    // Launched at 3 m/s from x = 38.5: it slows at μ·g = 1.962 m/s² and crosses the seam at
+    // about 0.63 s and stops after 1.53 s, 2.29 m on, at x ≈ 0.79.
+    body b = make_body(ground, make_box(0.5f, 0.5f), {38.5f, 10.5f});
+    b.velocity = {3, 0};
+    const uint32_t id = *w.add_body(b, make_box(0.5f, 0.5f));
+    std::vector<real> vx;
+    real lowest = 11, highest = 0, spin = 0;
+    for (int k = 0; k < 100; ++k) {
+        w.step({});
+        const body& now = *w.find(id);
+        vx.push_back(now.velocity.x());
+        lowest = std::min(lowest, now.position.y());
+        highest = std::max(highest, now.position.y());
+        spin = std::max(spin, std::abs(now.angular_velocity));
+    }
+    CHECK((vx[75] - vx[5]) / (70.0f / 60.0f) == Approx(-0.2 * 9.81).epsilon(0.01));
+    CHECK(w.find(id)->position.x() == Approx(0.79f).margin(0.05));
+    CHECK(lowest > 10.49f);
+    CHECK(highest < 10.505f);
+    CHECK(spin < 0.02f);
+}
+
 TEST_CASE("a ball near the seam bounces off a wall on the other side of it", "[world][wrap]") {
     // A static wall 1 m thick at x in [0, 1]: a ball going right from x = 36 meets its left
     // face at x = 40 (that is 0) and bounces back; one going left from x = 4 meets its right face.
