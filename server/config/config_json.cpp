@@ -162,6 +162,10 @@ void read_shape(const json& j, const std::string& path, world::shape_config& s) 
     r.finish();
     if (s.type == world::shape_type::chain) {
         if (s.points.size() < 2) throw bad_field{r.where("points") + " must hold at least two points"};
+        for (size_t i = 1; i < s.points.size(); ++i)
+            if (s.points[i] == s.points[i - 1])
+                throw bad_field{"field '" + r.child("points") + "[" + std::to_string(i) +
+                                "]' repeats the point before it (a segment needs two distinct points)"};
         return;
     }
     std::string error;

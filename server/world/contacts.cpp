@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/world/chain_manifold.hpp"
 #include "server/world/manifold.hpp"
 #include "server/world/splitmix64.hpp"
 
@@ -143,19 +144,24 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
         if (statics) {
             shape circle;
             const shape* own = nullptr;
-            scene.statics->query(box_of(proxy, spec), query_scratch, [&](const static_index::entry& e) {
+            const auto visit = [&](const static_index::entry& e, const vec2& offset) {
                 if (!own) own = &shape_of(b, scene.pool, circle);
                 shape other_circle;
                 const body& other = bodies[e.index];
                 if (!should_collide(b.filter, other.filter)) return;
-                const manifold m = collide(*own, transform_of(b, i, b.position, scratch),
-                                           shape_of(other, scene.pool, other_circle), e.xf, spec);
+                const shape& fixed = shape_of(other, scene.pool, other_circle);
+                const transform xf = transform_of(b, i, b.position, scratch);
+                // The static body where b meets it: across the seam in a wrapping world.
+                const transform image{e.xf.p + offset, e.xf.c, e.xf.s};
+                const manifold m = fixed.chain.linked ? collide_chain_segment(*own, xf, fixed, image, spec)
+                                                      : collide(*own, xf, fixed, image, spec);
                 if (m.count == 0) return;
-                contact c = make_contact(i, e.index, m, b.position, other.position);
+                contact c = make_contact(i, e.index, m, b.position, image.p);
                 c.friction = mix_friction(b.friction, other.friction);
                 c.restitution = std::max(b.restitution, other.restitution);
                 out.push_back(c);
-            });
+            };
+            scene.statics->query(box_of(proxy, spec), query_scratch, visit);
         }
         if (!walls) continue;
         // Most bodies are far from every wall: one test on the bounding box before the per-wall

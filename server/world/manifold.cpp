@@ -95,6 +95,47 @@ uint16_t feature_id(bool flip, bool clipped, int reference, int incident) {
     return static_cast<uint16_t>((flip ? 0x200 : 0) | (clipped ? 0x100 : 0) | (reference << 4) | incident);
 }
 
+// The incident edge: the one of the hull that faces the reference normal `n` most.
+int incident_edge(const world_hull& inc, const vec2& n) {
+    int edge = 0;
+    real least = 3.4e38f;
+    for (int i = 0; i < inc.count; ++i) {
+        const real d = inc.n[i].dot(n);
+        if (d < least) {
+            least = d;
+            edge = i;
+        }
+    }
+    return edge;
+}
+
+// Edge i2 of `inc` clipped to the extent of the reference edge i1 of `ref` along its tangent;
+// the points within `speculative` of the reference face. `flip`: the reference hull is the
+// pair's second shape (the normal then points from `inc` to `ref`).
+manifold clip_to_reference(const world_hull& ref, int i1, const world_hull& inc, int i2, bool flip, real speculative) {
+    manifold m;
+    const int i12 = next(ref, i1);
+    const int i22 = next(inc, i2);
+    const vec2 n = ref.n[i1];
+    const vec2 v11 = ref.v[i1], v12 = ref.v[i12], v21 = inc.v[i2], v22 = inc.v[i22];
+    const real radius = ref.radius + inc.radius;
+    const vec2 tangent = (v12 - v11).normalized();
+    clip_vertex v[2] = {{v21, feature_id(flip, false, i1, i2)}, {v22, feature_id(flip, false, i1, i22)}};
+    if (!clip(v, tangent, tangent.dot(v11), feature_id(flip, true, i1, i2))) return m;
+    if (!clip(v, vec2{-tangent}, -tangent.dot(v12), feature_id(flip, true, i12, i2))) return m;
+    m.normal = flip ? vec2{-n} : n;
+    for (const clip_vertex& c : v) {
+        const real core = n.dot(c.x - v11);
+        const real separation = core - radius;
+        if (separation > speculative) continue;
+        manifold_point& p = m.points[m.count++];
+        p.separation = separation;
+        p.point = c.x + n * (0.5f * (ref.radius - inc.radius - core));
+        p.id = c.id;
+    }
+    return m;
+}
+
 }  // namespace
 
 manifold collide_circles(const vec2& ca, real ra, const vec2& cb, real rb, real speculative) {
@@ -161,16 +202,7 @@ manifold collide_hulls(const shape& a, const transform& xa, const shape& b, cons
     const int i1 = flip ? edge_b : edge_a;
     const int i12 = next(ref, i1);
     const vec2 n = ref.n[i1];
-    // The incident edge: the one of the other hull that faces the reference normal most.
-    int i2 = 0;
-    real least = 3.4e38f;
-    for (int i = 0; i < inc.count; ++i) {
-        const real d = inc.n[i].dot(n);
-        if (d < least) {
-            least = d;
-            i2 = i;
-        }
-    }
+    const int i2 = incident_edge(inc, n);
     const int i22 = next(inc, i2);
     const vec2 v11 = ref.v[i1], v12 = ref.v[i12], v21 = inc.v[i2], v22 = inc.v[i22];
     const real core_separation = std::max(sep_a, sep_b);
@@ -199,22 +231,14 @@ manifold collide_hulls(const shape& a, const transform& xa, const shape& b, cons
             return m;
         }
     }
-    // Clip the incident edge to the reference edge's extent along its tangent.
-    const vec2 tangent = (v12 - v11).normalized();
-    clip_vertex v[2] = {{v21, feature_id(flip, false, i1, i2)}, {v22, feature_id(flip, false, i1, i22)}};
-    if (!clip(v, tangent, tangent.dot(v11), feature_id(flip, true, i1, i2))) return m;
-    if (!clip(v, vec2{-tangent}, -tangent.dot(v12), feature_id(flip, true, i12, i2))) return m;
-    m.normal = flip ? vec2{-n} : n;
-    for (const clip_vertex& c : v) {
-        const real core = n.dot(c.x - v11);
-        const real separation = core - radius;
-        if (separation > speculative) continue;
-        manifold_point& p = m.points[m.count++];
-        p.separation = separation;
-        p.point = c.x + n * (0.5f * (ref.radius - inc.radius - core));
-        p.id = c.id;
-    }
-    return m;
+    return clip_to_reference(ref, i1, inc, i2, flip, speculative);
+}
+
+manifold collide_on_edge(const shape& a, const transform& xa, const shape& b, const transform& xb, int edge,
+                         real speculative) {
+    const world_hull ha = to_world(a, xa);
+    const world_hull hb = to_world(b, xb);
+    return clip_to_reference(hb, edge, ha, incident_edge(ha, hb.n[edge]), true, speculative);
 }
 
 manifold collide(const shape& a, const transform& xa, const shape& b, const transform& xb, real speculative) {

@@ -43,6 +43,13 @@ manifold collide(const shape& a, const transform& xa, const shape& b, const tran
 // into the wall: up to the two deepest vertices.
 manifold collide_wall(const shape& a, const transform& xa, const vec2& normal, real offset, real speculative);
 
+// Hull a (2 to 8 vertices) against edge `edge` of hull b taken as the reference face, whatever
+// the separating axis would say: a's edge that faces it most, clipped to the edge's extent.
+// The normal (b's edge normal, negated) points from a to b; the feature ids are those
+// collide_hulls gives when it picks that edge. Chains snap to their face with it.
+manifold collide_on_edge(const shape& a, const transform& xa, const shape& b, const transform& xb, int edge,
+                         real speculative);
+
 // The pairs, for tests and for callers that know the kinds.
 manifold collide_circles(const vec2& ca, real ra, const vec2& cb, real rb, real speculative);
 manifold collide_hull_circle(const shape& a, const transform& xa, const vec2& centre, real radius, real speculative);

@@ -6,7 +6,8 @@
 //   circle   1 vertex (the centre), radius r
 //   capsule  2 vertices (the ends of its axis), radius r
 //   polygon  3 to 8 vertices, counter-clockwise, optional rounding radius (boxes: make_box)
-//   segment  2 vertices, radius 0: static level geometry (make_chain builds a run of them)
+//   segment  2 vertices, radius 0: static level geometry (world::add_chain builds a run of them,
+//            each linked to its neighbours: chain_link)
 // One representation keeps the narrow phase to three routines (manifold.hpp), as Box2D v3
 // treats its capsules as two-vertex polygons.
 #include <array>
@@ -23,6 +24,19 @@ enum class shape_kind : uint8_t { circle, capsule, polygon, segment };
 
 inline constexpr int max_polygon_vertices = 8;
 
+// What a chain's segment knows of its chain (Box2D v3's ghost vertices): the points before and
+// after it, so that a body sliding along the chain does not catch on the joints, and the side
+// it is solid on. A chain is one-sided: bodies collide with the face on the left of its
+// direction (edge 1 of the segment, vertices[1] → vertices[0], normal normals[1]), so a floor
+// runs left to right and a loop listed clockwise is solid. chain_manifold.hpp uses it.
+struct chain_link {
+    bool linked = false;    // a chain's segment; false: a free segment, solid on both sides
+    bool has_prev = false;  // the chain goes on before vertices[0]
+    bool has_next = false;  // the chain goes on after vertices[1]
+    vec2 prev{0, 0};        // m, body frame: the chain's point before vertices[0]
+    vec2 next{0, 0};        // m, body frame: the chain's point after vertices[1]
+};
+
 struct shape {
     // Eigen leaves its vectors uninitialised: zero them, so that unused entries hash and
     // compare the same everywhere.
@@ -36,6 +50,7 @@ struct shape {
     real radius = 1.0f;                                 // m, the rounding (a circle's or capsule's radius)
     std::array<vec2, max_polygon_vertices> vertices{};  // m, body frame, counter-clockwise
     std::array<vec2, max_polygon_vertices> normals{};   // outward unit normal of edge i → i+1
+    chain_link chain{};                                 // segments of a chain only
 };
 
 // Mass properties of a shape of uniform density (kg/m², 2D).

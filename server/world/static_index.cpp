@@ -3,15 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/world/integrate.hpp"
 #include "server/world/trig.hpp"
 
 namespace arena::world {
 
-void static_index::build(std::span<const body> bodies, std::span<const shape> pool) {
+void static_index::build(std::span<const body> bodies, std::span<const shape> pool, const world_config& config) {
     entries_.clear();
+    wraps_ = config.boundary == boundary::wrap;
+    size_ = config.size;
     for (uint32_t i = 0; i < bodies.size(); ++i) {
-        const body& b = bodies[i];
-        if (!b.is_static()) continue;
+        if (!bodies[i].is_static()) continue;
+        // Where the step keeps it: wrapped into the world (a no-op unless the world wraps).
+        body b = bodies[i];
+        wrap_position(b, config);
         entry e;
         e.index = i;
         if (b.shape == no_shape) {
@@ -30,6 +35,7 @@ void static_index::build(std::span<const body> bodies, std::span<const shape> po
         lo = lo.cwiseMin(e.box.lo);
         hi = hi.cwiseMax(e.box.hi);
     }
+    bounds_ = {lo, hi};
     // About four cells per static body, and none smaller than 1 m: a long segment spans a few
     // dozen cells at most, each listed once here.
     const vec2 size = hi - lo;
@@ -77,6 +83,13 @@ uint32_t static_index::cell_y(real y) const {
     const real c = (y - origin_.y()) / cell_;
     if (!(c >= 0)) return 0;
     return std::min(static_cast<uint32_t>(std::min<real>(c, 1 << 30)), ny_ - 1);
+}
+
+vec2 static_index::image_offset(uint32_t k) const {
+    // Unmoved, then across one seam (x, then y), then across both.
+    static constexpr int steps[image_count][2] = {{0, 0},   {-1, 0}, {1, 0},  {0, -1}, {0, 1},
+                                                  {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    return {static_cast<real>(steps[k][0]) * size_.x(), static_cast<real>(steps[k][1]) * size_.y()};
 }
 
 }  // namespace arena::world

@@ -113,7 +113,7 @@ body_extent world::integrate_velocities() {
 
 void world::detect_collisions(const body_extent& extent) {
     if (statics_dirty_) {
-        statics_.build(bodies_, shapes_);
+        statics_.build(bodies_, shapes_, config_);
         statics_dirty_ = false;
     }
     detect_contacts({bodies_, shapes_, &statics_}, make_grid(extent, bodies_.size(), config_), config_, scratch_,
@@ -217,8 +217,22 @@ std::optional<uint32_t> world::add_body(body b, const shape& s) {
 }
 
 std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> points, const body_material& material) {
+    // A chain whose last point is its first is a loop: its first and last segments are
+    // neighbours too. In a wrapping world so is one whose last point is its first one world
+    // width or height on (a floor all the way round): its ends meet across the seam.
+    const size_t n = points.size();
+    const vec2 round = n >= 2 ? vec2{points.back() - points.front()} : vec2{0, 0};
+    auto whole_turn = [](real d, real size) {
+        return d == 0 || d == size || d == -size;
+    };
+    const bool around = config_.boundary == boundary::wrap && round != vec2{0, 0} &&
+                        whole_turn(round.x(), config_.size.x()) && whole_turn(round.y(), config_.size.y());
+    const bool loop = (n >= 4 && round == vec2{0, 0}) || (n >= 3 && around);
+    // A segment of no length has no normal: refused before any body is added.
+    for (size_t k = 0; k + 1 < n; ++k)
+        if (points[k] == points[k + 1]) return std::nullopt;
     std::vector<uint32_t> ids;
-    for (size_t k = 0; k + 1 < points.size(); ++k) {
+    for (size_t k = 0; k + 1 < n; ++k) {
         const vec2 mid = (points[k] + points[k + 1]) * 0.5f;
         body b;
         b.mass = 0;
@@ -229,7 +243,17 @@ std::optional<std::vector<uint32_t>> world::add_chain(std::span<const vec2> poin
         b.friction = material.friction;
         b.drag_area = 0;
         b.position = mid;
-        const std::optional<uint32_t> id = add_body(b, make_segment(points[k] - mid, points[k + 1] - mid));
+        shape s = make_segment(points[k] - mid, points[k + 1] - mid);
+        s.chain.linked = true;
+        if (k > 0 || loop) {
+            s.chain.has_prev = true;
+            s.chain.prev = k > 0 ? vec2{points[k - 1] - mid} : vec2{points[n - 2] - round - mid};
+        }
+        if (k + 2 < n || loop) {
+            s.chain.has_next = true;
+            s.chain.next = k + 2 < n ? vec2{points[k + 2] - mid} : vec2{points[1] + round - mid};
+        }
+        const std::optional<uint32_t> id = add_body(b, s);
         if (!id) return std::nullopt;
         ids.push_back(*id);
     }

@@ -38,7 +38,12 @@ public:
     // body with zero inverse mass is static: level geometry, kept out of the moving bodies' grid.
     std::optional<uint32_t> add_body(body b, const shape& s);
     // A chain of static segments through `points` (one body each), made of `material`'s
-    // friction and restitution. Returns the ids, or nothing when the world is full.
+    // friction and restitution. Returns the ids, or nothing when the world is full or two
+    // consecutive points are equal (nothing is added then). Each
+    // segment knows its neighbours (shape::chain), so that bodies slide across the joints, and
+    // is solid on the left of the chain's direction only (a floor runs left to right); a chain
+    // of 4 or more points whose last point is its first is a closed loop, and so is one of 3 or
+    // more in a wrapping world whose last point is its first one world size on (round the world).
     std::optional<std::vector<uint32_t>> add_chain(std::span<const vec2> points, const body_material& material);
     // A player's body of the config's player material at a free spot drawn from the world's rng.
     std::optional<body_id> spawn_player(player_id owner);

@@ -45,6 +45,9 @@ TEST_CASE("a wrong field is named in the error", "[config]") {
     CHECK(error_of(R"({"fluids": [{"min": [0, 0], "max": [1, 1], "densty": 3}]})").find("'fluids[0].densty'") !=
           std::string::npos);
     CHECK(error_of("{ not json").find("invalid JSON") != std::string::npos);
+    // A chain's repeated point would make a segment of no length, whose normal is NaN.
+    CHECK(error_of(R"({"bodies": [{"shape": {"type": "chain", "points": [[0, 0], [1, 0], [1, 0]]}}]})")
+              .find("'bodies[0].shape.points[2]' repeats the point before it") != std::string::npos);
     // Regression (fuzz_config): a number too large for a double threw out_of_range, which
     // escaped the parser and ended the process.
     CHECK(error_of(R"({"rocks": 1111111111111111111111e1111111111111111111})").find("invalid JSON") !=
