@@ -247,7 +247,7 @@ TEST_CASE("a spectator with a player's name and token takes nothing over and is 
     }
 }
 
-TEST_CASE("a spectator's Pings keep it from the idle timeout; a silent one times out", "[match][spectator]") {
+TEST_CASE("a spectator's Pings keep it from the idle timeout, and a silent one times out", "[match][spectator]") {
     match::match m(config_with(), asteroids());  // idle timeout 5 s: 300 ticks
     watcher pinging, silent;
     REQUIRE(join(m, pinging, spectator_hello("p")) != 0);
