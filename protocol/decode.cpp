@@ -30,7 +30,7 @@ result<hello_msg> decode_hello(const Message& message) {
     const auto* t = message.payload_as<Hello>();
     if (t == nullptr) return result<hello_msg>::failure(unexpected(message, Payload::Hello));
     return result<hello_msg>::success(
-        {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots()});
+        {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots(), t->spectator()});
 }
 
 result<welcome_info> decode_welcome(const Message& message) {

@@ -23,11 +23,13 @@ void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type, flatbuffe
     fbb.FinishSizePrefixed(CreateMessage(fbb, type, payload), file_identifier);
 }
 
-frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token, bool delta_snapshots) {
+frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token, bool delta_snapshots,
+                         bool spectator) {
     flatbuffers::FlatBufferBuilder fbb(small_message_bytes + name.size() + token.size());
     const auto name_offset = make_string(fbb, name);
     const auto token_offset = make_string(fbb, token);
-    finish_message(fbb, Payload::Hello, CreateHello(fbb, version, name_offset, token_offset, delta_snapshots).Union());
+    finish_message(fbb, Payload::Hello,
+                   CreateHello(fbb, version, name_offset, token_offset, delta_snapshots, spectator).Union());
     return to_frame(fbb);
 }
 

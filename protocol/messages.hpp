@@ -21,6 +21,7 @@ struct hello_msg {
     std::string name;              // UTF-8
     std::string token;             // opaque
     bool delta_snapshots = false;  // the client decodes delta snapshots
+    bool spectator = false;        // the client watches: no body, no score line
     bool operator==(const hello_msg&) const = default;
 };
 
@@ -87,7 +88,7 @@ struct bye_msg {
 inline constexpr std::uint8_t button_impulse = 1u << 0;
 
 [[nodiscard]] frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token,
-                                       bool delta_snapshots = false);
+                                       bool delta_snapshots = false, bool spectator = false);
 [[nodiscard]] frame_bytes encode_welcome(const welcome_info& welcome);
 [[nodiscard]] frame_bytes encode_reject(RejectCode code, std::string_view reason);
 [[nodiscard]] frame_bytes encode_input(const input_msg& input);

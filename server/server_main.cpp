@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000));
     app.add_option("--max-players", options.match.max_players, "players at once (default 64)")
         ->check(CLI::Range(1, 100000));
+    app.add_option("--max-spectators", options.match.max_spectators,
+                   "spectators at once, besides the players (default 16; 0: none)")
+        ->check(CLI::Range(0, 100000));
     app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
@@ -82,7 +85,7 @@ int main(int argc, char** argv) {
                    "kernel send buffer per client, bytes (default 262144)")
         ->check(CLI::Range(4096, 64 << 20));
     app.add_option("--max-connections", options.max_connections,
-                   "open connections at once (default 2 x max players + 16)");
+                   "open connections at once (default 2 x max players + max spectators + 16)");
     app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
                    "connections that have not sent Hello yet; when all are taken a new one takes the slot of the "
                    "oldest from the busiest address (default 0: max players + 16, at least 64)");

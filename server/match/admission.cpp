@@ -18,7 +18,8 @@ uint32_t admission::input_limit() const {
 }
 
 uint32_t admission::connection_limit() const {
-    return limits_.max_connections ? limits_.max_connections : 2 * limits_.max_players + 16;
+    // Every player twice (a reconnection while the old connection is still open), every spectator.
+    return limits_.max_connections ? limits_.max_connections : 2 * limits_.max_players + limits_.max_spectators + 16;
 }
 
 uint32_t admission::pending_limit() const {
@@ -62,6 +63,7 @@ admitted_message admission::admit_message(const client_standing& client, const p
         }
         case Payload::Input: {
             if (!joined) return rejection{RejectCode::bad_request, "Input before Hello"};
+            if (client.spectator) return rejection{RejectCode::bad_request, "Input from a spectator, who has no body"};
             auto input = protocol::decode_input(message);
             if (!input) return rejection{RejectCode::bad_input, input.error};
             return input_message{input.value};
@@ -96,13 +98,15 @@ std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::h
     if (hello.token.size() > limits_.max_token_bytes)
         return rejection{RejectCode::bad_request,
                          "token longer than " + std::to_string(limits_.max_token_bytes) + " bytes"};
-    if (!check_token_) return admitted_hello{hello.name, hello.token};  // open: the token is the client's own key
+    // Open: the token is the client's own key. A spectator holds no identity: it has nothing
+    // to reconnect to and takes nobody over.
+    if (!check_token_) return admitted_hello{hello.name, hello.spectator ? "" : hello.token, hello.spectator};
     token_verdict verdict = check_token_(hello.token);
     if (!verdict.name) return rejection{RejectCode::unauthorized, std::move(verdict.problem)};
     if (auto problem = protocol::player_name_problem(*verdict.name, limits_.max_name_bytes))
         return rejection{RejectCode::unauthorized, "the token's " + *problem};
     // The signed name is the player's identity, whatever name the Hello claims.
-    return admitted_hello{*verdict.name, "signed:" + *verdict.name};
+    return admitted_hello{*verdict.name, hello.spectator ? "" : "signed:" + *verdict.name, hello.spectator};
 }
 
 std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> same_identity_connected,
@@ -111,6 +115,14 @@ std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> sam
     if (live_players >= limits_.max_players)
         return rejection{RejectCode::server_full, "server full (" + std::to_string(limits_.max_players) + " players)"};
     return join_kind::new_player;
+}
+
+std::optional<rejection> admission::admit_spectator(size_t spectators) const {
+    if (limits_.max_spectators == 0) return rejection{RejectCode::server_full, "this server admits no spectators"};
+    if (spectators >= limits_.max_spectators)
+        return rejection{RejectCode::server_full,
+                         "server full (" + std::to_string(limits_.max_spectators) + " spectators)"};
+    return std::nullopt;
 }
 
 std::variant<admitted_input, rejection> admission::admit_input(client_standing& client,
@@ -140,9 +152,11 @@ std::variant<admitted_input, rejection> admission::admit_input(client_standing& 
     return out;
 }
 
-std::optional<rejection> admission::admit_ping(client_standing& client, int64_t arrival_ns) const {
-    if (client.pings.take(arrival_ns, limits_.max_pings_per_second, std::max<uint32_t>(1, limits_.ping_burst)))
+std::optional<rejection> admission::admit_ping(client_standing& client, int64_t arrival_ns, uint32_t tick) const {
+    if (client.pings.take(arrival_ns, limits_.max_pings_per_second, std::max<uint32_t>(1, limits_.ping_burst))) {
+        if (client.spectator) client.last_input_tick = tick;
         return std::nullopt;
+    }
     return rejection{RejectCode::ping_limit, "more than " + std::to_string(limits_.ping_burst) + " Pings at once or " +
                                                  std::to_string(limits_.max_pings_per_second) + " per second"};
 }
@@ -153,7 +167,8 @@ std::optional<rejection> admission::check_on_tick(const client_standing& client,
         return rejection{RejectCode::timeout, "no Hello within the handshake timeout"};
     if (client.at == client_standing::stage::joined && limits_.idle_timeout_ticks != 0 &&
         tick - client.last_input_tick >= limits_.idle_timeout_ticks)
-        return rejection{RejectCode::timeout, "no Input within the idle timeout"};
+        return rejection{RejectCode::timeout,
+                         client.spectator ? "no Ping within the idle timeout" : "no Input within the idle timeout"};
     return std::nullopt;
 }
 

@@ -1,15 +1,16 @@
 #pragma once
 // Every rule about what a client may send, and when, in one place: how many connections and
 // handshakes at once, message order, the Hello (version, name and token limits, the token's
-// identity), reconnection and takeover, capacity, and inputs (order, rate, finite numbers).
+// identity), reconnection and takeover, capacity (players and spectators), and inputs (order,
+// rate, finite numbers; none from a spectator).
 // Each rule is checked once, here, at the boundary, and a refusal is a typed `rejection` (the
 // RejectCode the client reads, and a detail). The match acts on the verdicts; transports only
 // frame and verify bytes (protocol/) and hand the messages over.
 //
 // Where a new rule goes: a limit on connections in admit_connection(), on a message kind in
 // admit_message(), on the Hello in admit_hello(), on who may take which player in
-// admit_join(), on inputs in admit_input(), on a client's behaviour over time in
-// check_on_tick(). What a rule must remember about one client lives in client_standing.
+// admit_join() (admit_spectator() for those who watch), on inputs in admit_input(), on a client's behaviour over time
+// in check_on_tick(). What a rule must remember about one client lives in client_standing.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -30,7 +31,8 @@ namespace arena::match {
 struct admission_limits {
     uint16_t tick_rate = 60;                 // ticks per second: time-outs are counted in ticks
     uint32_t max_players = 64;               // players at once
-    uint32_t max_connections = 0;            // open connections at once; 0: 2 × max_players + 16
+    uint32_t max_spectators = 16;            // spectators at once (Hello.spectator), besides the players; 0: none
+    uint32_t max_connections = 0;            // open connections at once; 0: 2 × max_players + max_spectators + 16
     uint32_t max_pending_handshakes = 0;     // connections that have not sent Hello yet; 0: see pending_limit()
     uint32_t handshake_timeout_ticks = 300;  // ticks a new connection has to send Hello (5 s at 60 Hz)
     uint32_t idle_timeout_ticks = 300;       // ticks a joined client may go without an Input; 0: never
@@ -58,7 +60,8 @@ struct client_standing {
     enum class stage : uint8_t { awaiting_hello, joined };
     stage at = stage::awaiting_hello;
     uint32_t connected_tick = 0;   // the world's tick when the connection was handed over
-    uint32_t last_input_tick = 0;  // the tick of the last Input (or of the Hello): idle since
+    bool spectator = false;        // joined to watch: sends no Input; its Pings keep it from the idle timeout
+    uint32_t last_input_tick = 0;  // the tick of the last Input (a spectator's: Ping), or of the Hello: idle since
     uint32_t last_sequence = 0;    // newest Input.sequence taken; older ones are stale
     token_bucket inputs;           // the input rate, in the transport's arrival times
     token_bucket pings;            // the Ping rate, likewise
@@ -79,10 +82,11 @@ struct bye_message {
 };
 using admitted_message = std::variant<rejection, hello_message, input_message, ping_message, bye_message>;
 
-// A Hello that passed: who the player is.
+// A Hello that passed: who the player (or spectator) is.
 struct admitted_hello {
-    std::string name;      // the signed name with a token secret, else the Hello's name
-    std::string identity;  // the key a reconnection is matched by; empty: none (cannot reconnect)
+    std::string name;        // the signed name with a token secret, else the Hello's name
+    std::string identity;    // the key a reconnection is matched by; empty: none (cannot reconnect)
+    bool spectator = false;  // Hello.spectator: joins without a body
 };
 
 // How a Hello joins, given the player already holding its identity, if any.
@@ -126,7 +130,10 @@ public:
     // A verified message from a client: in order for its stage, and decoded.
     [[nodiscard]] admitted_message admit_message(const client_standing& client, const protocol::Message& message) const;
     // The Hello's own rules: the server is not draining, the version, the name and token
-    // limits, and the token's identity.
+    // limits, and the token's identity. A spectator passes the same checks (a server with a
+    // token secret lets only holders of a good token watch) but holds no identity: it never
+    // takes a player over nor is taken over, so watching one's own match from a second
+    // connection, under the same name or token, does not end the game's connection.
     [[nodiscard]] std::variant<admitted_hello, rejection> admit_hello(const protocol::hello_msg& hello,
                                                                       bool draining) const;
     // Whether the player may join: `same_identity_connected` is unset when no player holds the
@@ -135,15 +142,20 @@ public:
     // (the match gives the oldest of them up to make room).
     [[nodiscard]] std::variant<join_kind, rejection> admit_join(std::optional<bool> same_identity_connected,
                                                                 size_t live_players) const;
+    // Whether a spectator may join while `spectators` watch: spectators have a cap of their own
+    // (max_spectators) and take no player's slot; 0 admits none (server_full, as a full match
+    // refuses a player).
+    [[nodiscard]] std::optional<rejection> admit_spectator(size_t spectators) const;
     // An Input from a joined client that arrived at `arrival_ns` (the transport's clock, in
     // nanoseconds): the rate, finite numbers, and the sequence order. Updates `client` (the
     // rate bucket, the last sequence, the idle time) when it passes.
     [[nodiscard]] std::variant<admitted_input, rejection> admit_input(client_standing& client,
                                                                       const protocol::input_msg& input,
                                                                       int64_t arrival_ns, uint32_t tick) const;
-    // A Ping from a joined client at `arrival_ns`: within the ping rate, or refused (ping_limit)
-    // before its Pongs could fill the connection's output.
-    [[nodiscard]] std::optional<rejection> admit_ping(client_standing& client, int64_t arrival_ns) const;
+    // A Ping from a joined client at `arrival_ns`, at `tick`: within the ping rate, or refused
+    // (ping_limit) before its Pongs could fill the connection's output. A spectator sends no
+    // Input, so a Ping is what tells that it is still there: it restarts its idle time.
+    [[nodiscard]] std::optional<rejection> admit_ping(client_standing& client, int64_t arrival_ns, uint32_t tick) const;
     // Once per tick, after the step, for each client: what time alone refuses (a Hello that
     // never came, a joined client that stopped sending Inputs).
     [[nodiscard]] std::optional<rejection> check_on_tick(const client_standing& client, uint32_t tick) const;

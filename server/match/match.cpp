@@ -20,6 +20,7 @@ admission_limits limits_of(const match_config& c) {
     admission_limits l;
     l.tick_rate = c.tick_rate;
     l.max_players = c.max_players;
+    l.max_spectators = c.max_spectators;
     l.max_connections = c.max_connections;
     l.max_pending_handshakes = c.max_pending_handshakes;
     l.handshake_timeout_ticks =
@@ -125,7 +126,7 @@ bool match::receive(connection& c, const protocol::Message& message, int64_t arr
     if (auto* m = std::get_if<hello_message>(&admitted)) return on_hello(c, cl, m->hello);
     if (auto* m = std::get_if<input_message>(&admitted)) return on_input(c, cl, m->input, arrival_ns);
     if (auto* m = std::get_if<ping_message>(&admitted)) {
-        if (auto no = admission_.admit_ping(cl.standing, arrival_ns)) {
+        if (auto no = admission_.admit_ping(cl.standing, arrival_ns, world_.tick())) {
             reject(c, *no);
             return false;
         }
@@ -143,6 +144,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         return false;
     }
     admitted_hello& admitted = std::get<admitted_hello>(who);
+    if (admitted.spectator) return on_spectator_hello(c, cl, admitted);
     auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
     const std::optional<bool> same_connected =
         same == players_.end() ? std::nullopt : std::optional<bool>(same->second.who != nullptr);
@@ -195,6 +197,37 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     // The admitted name: the signed one with a token secret, never merely the claimed one.
     log_("hello player=%u name=%s from %.*s", id.value(), players_.at(id).name.c_str(), static_cast<int>(peer.size()),
          peer.data());
+    return true;
+}
+
+bool match::on_spectator_hello(connection& c, client& cl, const admitted_hello& admitted) {
+    if (auto no = admission_.admit_spectator(spectators_.size())) {
+        reject(c, *no);
+        return false;
+    }
+    // An id from the players' sequence, so that the Welcome's player_id is never 0 and names
+    // nobody else; it never gets a body, so it is never on the scoreboard.
+    const world::player_id id{next_player_id_++};
+    // BodyState snapshots whatever the Hello asked: a delta is encoded against the view the
+    // client acknowledged in its Inputs, and a spectator sends none. With the whole world as
+    // the view (no view radius), that is the shared frame: one copy per spectator.
+    spectator& s =
+        spectators_
+            .emplace(id, spectator{&c, admitted.name, snapshot_client(baseline_ring(), false, c.snapshot_budget()), 0,
+                                   world_.tick()})
+            .first->second;
+    cl.player_id = id;
+    cl.standing.at = client_standing::stage::joined;
+    cl.standing.spectator = true;
+    cl.standing.last_input_tick = world_.tick();  // the idle timeout (kept off by Pings) starts now
+    --awaiting_hello_;
+    const auto bodies = world_.bodies();
+    s.snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
+    protocol::welcome_info welcome = welcome_for(id.value(), 0);  // entity_id 0: no body of its own
+    welcome.view_radius = 0;                                      // its snapshots hold every body
+    c.send(protocol::encode_welcome(welcome));
+    const std::string_view peer = c.peer();
+    log_("spectate id=%u name=%s from %.*s", id.value(), s.name.c_str(), static_cast<int>(peer.size()), peer.data());
     return true;
 }
 
@@ -285,6 +318,12 @@ void match::forget(client_map::iterator it, const close_cause& cause) {
     if (it->second.standing.at == client_standing::stage::awaiting_hello) --awaiting_hello_;
     clients_.erase(it);
     if (!player_id) return;
+    if (auto s = spectators_.find(player_id); s != spectators_.end()) {
+        log_("spectator leaves id=%u name=%s reason=%s", player_id.value(), s->second.name.c_str(),
+             cause.text().c_str());
+        spectators_.erase(s);
+        return;
+    }
     auto p = players_.find(player_id);
     if (p != players_.end() && p->second.who == c) leave(p, cause);
 }
@@ -450,42 +489,51 @@ void match::send_snapshots() {
     for (auto it = players_.begin(); it != players_.end();) {
         const world::player_id id = it->first;
         player& p = it->second;
-        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase) send_snapshot(p);
+        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase)
+            send_snapshot(p, p.body_id, p.inputs.last_consumed_sequence());
         it = players_.upper_bound(id);
+    }
+    // Spectators, BodyState clients all, on the interval's ticks, after the players.
+    if (phase != 0) return;
+    for (auto it = spectators_.begin(); it != spectators_.end();) {
+        const world::player_id id = it->first;
+        send_snapshot(it->second, world::body_id{}, 0);  // no body: the whole world; no input to acknowledge
+        it = spectators_.upper_bound(id);
     }
 }
 
-const protocol::game_list* match::game_for(const player& p) {
+template <class Reader>
+const protocol::game_list* match::game_for(const Reader& r) {
     if (game_.empty()) return nullptr;
     uint32_t held = 0;
-    if (p.snapshots.delta) {
+    if (r.snapshots.delta) {
         // Held: what the newest acknowledged snapshot sent to this client brought.
-        const uint32_t acked = p.snapshots.acked_tick;
-        if (acked != 0 && acked < world_.tick() && p.snapshots.views.at(acked) != nullptr) held = acked;
+        const uint32_t acked = r.snapshots.acked_tick;
+        if (acked != 0 && acked < world_.tick() && r.snapshots.views.at(acked) != nullptr) held = acked;
     } else {
-        held = p.game_sent_tick;  // a stream: what was sent arrived
+        held = r.game_sent_tick;  // a stream: what was sent arrived
     }
-    game_.collect(held, p.connected_tick, game_list_);
+    game_.collect(held, r.connected_tick, game_list_);
     return &game_list_;
 }
 
-void match::send_snapshot(player& p) {
-    const uint32_t ack = p.inputs.last_consumed_sequence();
+template <class Reader>
+void match::send_snapshot(Reader& r, world::body_id own, uint32_t ack) {
     ++counters_.snapshots_sent;
-    if (!p.snapshots.delta && fanout_.shared_full_frame()) {
-        if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(p.snapshots)) {
+    if (!r.snapshots.delta && fanout_.shared_full_frame()) {
+        if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(r.snapshots)) {
             counters_.snapshot_bytes = shared->frame().size();
-            p.game_sent_tick = world_.tick();
-            p.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
+            r.game_sent_tick = world_.tick();
+            r.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
             return;
         }
     }
-    const protocol::game_list* game = game_for(p);
-    if (!p.snapshots.delta) p.game_sent_tick = world_.tick();
-    const auto frame = p.snapshots.delta ? fanout_.delta_frame(p.snapshots, p.body_id, ack, game)
-                                         : fanout_.full_frame(p.snapshots, p.body_id, ack, game);
+    const protocol::game_list* game = game_for(r);
+    if (!r.snapshots.delta) r.game_sent_tick = world_.tick();
+    const auto frame = r.snapshots.delta ? fanout_.delta_frame(r.snapshots, own, ack, game)
+                                         : fanout_.full_frame(r.snapshots, own, ack, game);
     counters_.snapshot_bytes = frame.size();
-    p.who->send_snapshot_frame(frame);
+    r.who->send_snapshot_frame(frame);
 }
 
 std::vector<match::named_score> match::scoreboard() const {
@@ -503,6 +551,7 @@ match_counters match::counters() const {
     total.players = live_player_count();  // live connections only: bodies in the grace are counted apart
     total.players_in_grace = players_in_grace();
     total.max_players = config_.max_players;
+    total.spectators = spectators_.size();
     for (const rules::score_line& line : rules_->scoreboard()) {
         total.shots += line.shots;
         total.hits += line.hits;

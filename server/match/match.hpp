@@ -36,11 +36,12 @@ struct match_config {
     uint16_t tick_rate = 60;      // ticks per second
     uint16_t snapshot_rate = 20;  // snapshots per second: a divisor of tick_rate (the Welcome tells it)
     uint32_t max_players = 64;
+    uint32_t max_spectators = 16;         // spectators at once (Hello.spectator), besides the players; 0: none
     uint32_t input_buffer = 8;            // inputs waiting per player; more drop the oldest
     uint32_t max_inputs_per_second = 0;   // 0: 2 × tick_rate + 10
     uint32_t max_name_bytes = 64;         // Hello.name, bytes
     uint32_t max_token_bytes = 1024;      // Hello.token, bytes
-    uint32_t max_connections = 0;         // open connections at once; 0: 2 × max_players + 16
+    uint32_t max_connections = 0;         // open connections at once; 0: 2 × max_players + max_spectators + 16
     uint32_t max_pending_handshakes = 0;  // connections that have not sent Hello yet; 0: max_players + 16, at least 64
     double handshake_timeout_s = 5;       // s a new connection has to send Hello (counted in ticks)
     double idle_timeout_s = 5;            // s a joined client may go without an Input (in ticks); 0: never
@@ -73,6 +74,7 @@ struct match_counters {
     uint64_t players = 0;                              // players in the match now with a live connection
     uint64_t players_in_grace = 0;                     // dropped players whose bodies wait for them
     uint64_t max_players = 0;                          // the limit
+    uint64_t spectators = 0;                           // spectators watching now (no body, no score line)
     uint64_t shots = 0;                                // the game rules' scoreboard, summed: bullets fired
     uint64_t hits = 0;                                 // shots that hit a rock or a ship
     uint64_t kills = 0;                                // ships destroyed by another player's bullet
@@ -142,7 +144,9 @@ public:
     size_t live_player_count() const { return players_.size() - players_in_grace(); }
     size_t players_in_grace() const;  // dropped players whose bodies wait for them
     size_t connection_count() const { return clients_.size(); }
-    // The player `c` plays (0: none yet, or not a connection of this match).
+    size_t spectator_count() const { return spectators_.size(); }
+    // The player `c` plays, or the id its spectator was welcomed with (0: none yet, or not a
+    // connection of this match).
     uint32_t player_of(const connection& c) const;
     bool draining() const { return draining_; }
 
@@ -158,6 +162,16 @@ private:
         uint32_t game_sent_tick = 0;  // BodyState clients: the tick of the last snapshot sent (game_feed)
         uint32_t connected_tick = 0;  // the events a new connection hears start after it
     };
+    // A client that watches: it has no body, no input buffer, no score line and no identity
+    // (admission.hpp); it gets the Welcome, the snapshots and the game like a player, and the
+    // last Bye. Its fields that the snapshots need are named as the player's.
+    struct spectator {
+        connection* who = nullptr;
+        std::string name;
+        snapshot_client snapshots;
+        uint32_t game_sent_tick = 0;  // the tick of the last snapshot sent (game_feed)
+        uint32_t connected_tick = 0;  // the events it hears start after it
+    };
     struct client {
         uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
         std::string address;  // the peer's address without its port
@@ -165,9 +179,12 @@ private:
         world::player_id player_id;  // none (0) until the Hello is accepted
     };
     using client_map = std::unordered_map<const connection*, client>;
-    using player_map = std::map<world::player_id, player>;  // by player id: a deterministic order
+    using player_map = std::map<world::player_id, player>;        // by player id: a deterministic order
+    using spectator_map = std::map<world::player_id, spectator>;  // by the id of its Welcome
 
     bool on_hello(connection& c, client& cl, const protocol::hello_msg& hello);
+    // A Hello that passed with spectator set: welcomed at once, it has no body to wait for.
+    bool on_spectator_hello(connection& c, client& cl, const admitted_hello& admitted);
     bool on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns);
     // The waiting connection that gives its handshake slot up to a new one (not `newcomer`).
     connection* oldest_waiting_of_busiest_address(const connection* newcomer) const;
@@ -184,9 +201,13 @@ private:
     void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
     void tag_new_bodies();  // the rules' kind of each body that appeared since the last tick
-    void send_snapshot(player& p);
-    // Into game_list_: what `p`'s snapshot at this tick carries of the game.
-    const protocol::game_list* game_for(const player& p);
+    // `r` is a player or a spectator: what it sees is the view around `own`, or with none
+    // (a spectator) the whole world; `ack` is its last input consumed.
+    template <class Reader>
+    void send_snapshot(Reader& r, world::body_id own, uint32_t ack);
+    // Into game_list_: what `r`'s snapshot at this tick carries of the game.
+    template <class Reader>
+    const protocol::game_list* game_for(const Reader& r);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
@@ -202,6 +223,7 @@ private:
     uint64_t next_serial_ = 1;
     size_t awaiting_hello_ = 0;  // clients that have not said Hello
     player_map players_;
+    spectator_map spectators_;
     std::vector<world::player_id> pending_joins_;     // players whose body spawns next tick
     std::vector<world::body_id> pending_leaves_;      // bodies to remove next tick
     std::vector<world::player_id> pending_welcomes_;  // reconnected players, welcomed after the next tick

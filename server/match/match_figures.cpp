@@ -6,6 +6,10 @@ namespace arena::match {
 void report(const match_counters& c, figure_sink& out) {
     // The log line counts a player in the grace too: its body is still in the match.
     out.gauge({"", "", "", "players"}, c.players + c.players_in_grace);
+    // Spectators have no body and no score line: counted apart from the players everywhere.
+    out.gauge({"spectators", "arena_spectators_connected", "Spectators watching the match (no body, no score line).",
+               "spectators"},
+              c.spectators);
     out.counter({"ticks", "arena_ticks_total", "World steps run.", "ticks"}, c.ticks);
     // The game rules' scoreboard summed over the players (zero under sandbox rules).
     out.counter({"shots", "arena_shots_total", "Bullets fired by every player."}, c.shots);

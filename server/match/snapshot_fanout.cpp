@@ -81,7 +81,7 @@ void snapshot_fanout::find_view(world::body_id own_id) {
     const uint32_t body_id = own_id.value();
     view_.clear();
     const auto bodies = world_->bodies();
-    if (config_.view_radius <= 0) {
+    if (config_.view_radius <= 0 || !own_id) {
         view_.resize(bodies.size());
         std::iota(view_.begin(), view_.end(), 0u);
         return;

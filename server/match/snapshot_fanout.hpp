@@ -5,7 +5,9 @@
 // - other clients get BodyState snapshots: one frame shared by all when the view is the whole
 //   world, else one per client holding its view.
 // A client's view is its own body and every body within view_radius of it, found through a
-// grid index built once per tick that sends snapshots (server/world/view_index.hpp).
+// grid index built once per tick that sends snapshots (server/world/view_index.hpp). A client
+// without a body (`own` none: a spectator) sees the whole world: it watches the match, not one
+// ship's surroundings, and the scoreboard it reads covers every player.
 // Every frame also describes the shapes of the view's bodies that its client may not hold
 // yet (shape_tracker.hpp; protocol/README.md "Shapes"). The shared frame describes the
 // bodies spawned since the previous shared frame, so it serves exactly the clients that got
@@ -97,7 +99,8 @@ public:
     [[nodiscard]] const fanout_config& config() const { return config_; }
 
 private:
-    // Indices (into the world's body span) of what the body `own` sees, into view_.
+    // Indices (into the world's body span) of what the body `own` sees, into view_; every body
+    // when `own` is none.
     void find_view(world::body_id own);
     // This tick's work, each done once on first use.
     const std::vector<protocol::delta::quantized_body>& quantized();

@@ -300,6 +300,7 @@ void server::write_stats_json(const std::string& path) const {
         {"snapshots", {{"view_radius", options_.match.view_radius}}},
         {"limits",
          {{"max_players", options_.match.max_players},
+          {"max_spectators", options_.match.max_spectators},
           {"max_connections", match_.rules().connection_limit()},
           {"max_pending_handshakes", match_.rules().pending_limit()},
           {"max_inputs_per_second", match_.rules().input_limit()},

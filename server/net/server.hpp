@@ -30,7 +30,7 @@ struct server_options {
     match::match_config match{};
     double duration_s = 0;                         // 0: run until a signal
     std::string stats_json;                        // written at exit when set
-    uint32_t max_connections = 0;                  // 0: 2 × max_players + 16
+    uint32_t max_connections = 0;                  // 0: 2 × max_players + max_spectators + 16
     uint32_t max_pending_handshakes = 0;           // not sent Hello yet; 0: max_players + 16, at least 64
     int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
     int64_t idle_timeout_ns = 5'000'000'000;       // a joined client's Inputs must not pause longer; 0: never

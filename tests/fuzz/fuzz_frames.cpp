@@ -45,6 +45,7 @@ arena::world::world_config small_world() {
 arena::match::match_config small_limits() {
     arena::match::match_config c;
     c.max_players = 3;
+    c.max_spectators = 2;
     c.max_connections = 6;
     c.max_pending_handshakes = 2;
     c.handshake_timeout_s = 0.1;
@@ -57,6 +58,7 @@ arena::match::match_config small_limits() {
 void check(const arena::match::match& game) {
     if (game.live_player_count() > game.config().max_players) __builtin_trap();
     if (game.player_count() > game.config().max_players) __builtin_trap();
+    if (game.spectator_count() > game.config().max_spectators) __builtin_trap();
     if (game.connection_count() > game.rules().connection_limit()) __builtin_trap();
 }
 

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "protocol/decode.hpp"
 #include "protocol/messages.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
@@ -25,12 +26,15 @@ inline bool deliver_at(match::match& m, match::connection& c, const protocol::fr
 }
 
 // Connects `c` (when it is new) and sends its Hello; `identity` goes in the token, which an
-// open server takes as the client's key. The player id, or 0 when refused.
+// open server takes as the client's key. The player id (a spectator's: the id of its Welcome),
+// or 0 when refused.
 inline uint32_t join(match::match& m, match::connection& c, const protocol::hello_msg& hello,
                      const std::string& identity = {}) {
     if (m.player_of(c) == 0 && !m.connect(c)) return 0;
     const std::string token = identity.empty() ? hello.token : identity;
-    if (!deliver(m, c, protocol::encode_hello(hello.protocol_version, hello.name, token, hello.delta_snapshots)))
+    if (!deliver(
+            m, c,
+            protocol::encode_hello(hello.protocol_version, hello.name, token, hello.delta_snapshots, hello.spectator)))
         return 0;
     return m.player_of(c);
 }
@@ -43,6 +47,17 @@ inline bool send_input(match::match& m, match::connection& c, const protocol::in
 // The client says Bye and leaves at once.
 inline void say_bye(match::match& m, match::connection& c, const std::string& reason = "done") {
     CHECK_FALSE(deliver(m, c, protocol::encode_bye(reason)));
+}
+
+// Verifies and decodes a snapshot frame the match sent; `storage` keeps the bytes the view
+// points into.
+inline protocol::snapshot_view read_snapshot(std::span<const uint8_t> bytes, protocol::frame_bytes& storage) {
+    storage.assign(bytes.begin(), bytes.end());
+    auto m = protocol::verify_message(storage, protocol::server_frame_limits);
+    REQUIRE(m);
+    auto snap = protocol::decode_snapshot(*m.value);
+    REQUIRE(snap);
+    return snap.value;
 }
 
 // The connection drops without a word.

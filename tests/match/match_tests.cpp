@@ -24,13 +24,10 @@ struct fake_client : match::connection {
         send_snapshot_frame(s.frame_with_ack(ack));
     }
     void send_snapshot_frame(std::span<const uint8_t> bytes) override {
-        const protocol::frame_bytes frame(bytes.begin(), bytes.end());
-        auto m = protocol::verify_message(frame, protocol::server_frame_limits);
-        REQUIRE(m);
-        auto snap = protocol::decode_snapshot(*m.value);
-        REQUIRE(snap);
-        snapshot_acks.push_back(snap.value.ack_sequence);
-        snapshot_ticks.push_back(snap.value.tick);
+        protocol::frame_bytes frame;
+        const protocol::snapshot_view snap = read_snapshot(bytes, frame);
+        snapshot_acks.push_back(snap.ack_sequence);
+        snapshot_ticks.push_back(snap.tick);
     }
     void close(protocol::RejectCode code, std::string_view) override { rejected = code; }
     std::string bye;

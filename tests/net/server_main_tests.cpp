@@ -119,7 +119,7 @@ TEST_CASE("the periodic stats log line keeps its fields, their order and their f
     const auto r = run_command("timeout 20 " + program("arena-server") +
                                " --port 0 --duration 0.6 --stats-interval 0.2 2>&1 >/dev/null");
     const std::regex line(
-        R"(\[ *[0-9.]+\] stats players=0 ticks=[0-9]+ tick_ms_p50=[0-9]+\.[0-9]{3} tick_ms_p99=[0-9]+\.[0-9]{3} )"
+        R"(\[ *[0-9.]+\] stats players=0 spectators=0 ticks=[0-9]+ tick_ms_p50=[0-9]+\.[0-9]{3} tick_ms_p99=[0-9]+\.[0-9]{3} )"
         R"(tick_ms_max=[0-9]+\.[0-9]{3} overruns=[0-9]+ bytes_in_per_s=[0-9]+ bytes_out_per_s=[0-9]+ connections=0)");
     std::istringstream lines(r.output);
     int found = 0;

@@ -123,6 +123,44 @@ TEST_CASE("ping is answered with pong", "[net][e2e]") {
     CHECK(pong.value.client_time == 123456789);
 }
 
+TEST_CASE("a spectator over TCP watches the full match's bodies and its Input is refused", "[net][e2e][spectator]") {
+    server_process server({"--preset", "asteroids", "--max-players", "1", "--max-spectators", "1"});
+    joined_client player(server.port(), "player");
+    test_client eye(server.port());
+    eye.send_frame(protocol::encode_hello(protocol::protocol_version, "player", "", false, true));
+    auto frame = eye.read_until(Payload::Welcome);
+    REQUIRE(frame);
+    auto welcome = protocol::decode_welcome(*message_of(*frame));
+    REQUIRE(welcome);
+    CHECK(welcome.value.entity_id == 0);
+    CHECK(welcome.value.player_id != player.welcome.player_id);
+    // The player's ship, in a snapshot of the spectator's, and no body of its own.
+    bool seen = false;
+    for (int i = 0; i < 40 && !seen; ++i) {
+        frame = eye.read_until(Payload::Snapshot);
+        REQUIRE(frame);
+        auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+        REQUIRE(snapshot);
+        for (const protocol::BodyState& b : snapshot.value.bodies) {
+            CHECK(b.owner() != welcome.value.player_id);
+            seen = seen || b.owner() == player.welcome.player_id;
+        }
+    }
+    CHECK(seen);
+    {
+        test_client second(server.port());  // the one spectator slot is taken
+        second.send_frame(protocol::encode_hello(protocol::protocol_version, "two", "", false, true));
+        CHECK(expect_reject(second).code == protocol::RejectCode::server_full);
+    }
+    eye.send_frame(protocol::encode_input({1, 1.0f, 0.0f, 0}));
+    const protocol::reject_msg no = expect_reject(eye);
+    CHECK(no.code == protocol::RejectCode::bad_request);
+    CHECK(no.reason == "Input from a spectator, who has no body");
+    // The player plays on.
+    player.client.send_frame(protocol::encode_input({1, 1.0f, 0.0f, 0}));
+    CHECK(count_snapshots(player.client, 300ms) > 0);
+}
+
 TEST_CASE("version mismatch, a full server and a missing hello are rejected with their codes", "[net][e2e]") {
     server_process server({"--max-players", "1", "--handshake-timeout", "0.3"});
     {

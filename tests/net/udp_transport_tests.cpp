@@ -98,6 +98,40 @@ TEST_CASE("a client joins over UDP beside TCP, its inputs are consumed and snaps
     CHECK(server.process.stop(SIGTERM) == 0);
 }
 
+TEST_CASE("a spectator over UDP sees a TCP player's ship and its Input is refused", "[net][udp][spectator]") {
+    udp_server server({"--preset", "asteroids"});
+    test_client player(server.process.port());
+    player.send_frame(protocol::encode_hello(protocol::protocol_version, "player", ""));
+    auto frame = player.read_until(Payload::Welcome);
+    REQUIRE(frame);
+    auto player_welcome = protocol::decode_welcome(*message_of(*frame));
+    REQUIRE(player_welcome);
+
+    udp_client eye(server.udp_port);
+    REQUIRE(eye.connected());
+    eye.send_reliable(protocol::encode_hello(protocol::protocol_version, "eye", "", true, true));
+    frame = eye.read_until(Payload::Welcome, 3000ms);
+    REQUIRE(frame);
+    auto welcome = protocol::decode_welcome(*message_of(*frame));
+    REQUIRE(welcome);
+    CHECK(welcome.value.entity_id == 0);
+    CHECK(welcome.value.view_radius == 0.0f);
+    bool seen = false;
+    for (int i = 0; i < 40 && !seen; ++i) {
+        frame = eye.read_until(Payload::Snapshot, 3000ms);
+        REQUIRE(frame);
+        auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+        REQUIRE(snapshot);
+        CHECK_FALSE(snapshot.value.is_delta);  // a spectator acknowledges nothing: full snapshots
+        for (const protocol::BodyState& b : snapshot.value.bodies)
+            seen = seen || b.owner() == player_welcome.value.player_id;
+    }
+    CHECK(seen);
+    eye.send_unreliable(protocol::encode_input({1, 1.0f, 0.0f, 0}));
+    CHECK(expect_reject(eye).code == protocol::RejectCode::bad_request);
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
 TEST_CASE("UDP peers count as connections like TCP ones: the stats line's connections=", "[net][udp]") {
     udp_server server({"--stats-interval", "0.2"});
     test_client tcp(server.process.port());

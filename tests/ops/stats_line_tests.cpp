@@ -14,6 +14,7 @@ TEST_CASE("the stats log line lists the reported figures in their historic forma
     c.players = 2;
     c.players_in_grace = 1;  // still a player of the match on this line
     c.joins = 9;             // in --stats-json and /metrics, not on the line
+    c.spectators = 1;        // beside the players, not among them
     c.rejects = {{arena::protocol::RejectCode::bad_input, 3}};
     process_counters p;
     p.tick_overruns = 4;
@@ -24,6 +25,6 @@ TEST_CASE("the stats log line lists the reported figures in their historic forma
     report(c, line);
     report(p, line);
     CHECK(line.line() ==
-          "stats players=3 ticks=300 tick_ms_p50=0.010 tick_ms_p99=0.020 tick_ms_max=0.032 overruns=4 "
+          "stats players=3 spectators=1 ticks=300 tick_ms_p50=0.010 tick_ms_p99=0.020 tick_ms_max=0.032 overruns=4 "
           "bytes_in_per_s=2880 bytes_out_per_s=52001 connections=5");
 }

@@ -48,6 +48,25 @@ TEST_CASE("Hello round-trips every field", "[protocol]") {
     CHECK(hello.value == ap::hello_msg{ap::protocol_version, "bot-7 \xc3\xa9", "s3cret"});
 }
 
+TEST_CASE("Hello's appended flags round-trip, and a spectator's Hello is a player's plus one field", "[protocol]") {
+    std::vector<std::uint8_t> storage;
+    const auto* m = read_back(ap::encode_hello(ap::protocol_version, "eye", "k", true, true), storage);
+    const auto hello = ap::decode_hello(*m);
+    REQUIRE(hello);
+    CHECK(hello.value == ap::hello_msg{ap::protocol_version, "eye", "k", true, true});
+    // Whether the table holds the field (generated tables derive privately from flatbuffers::Table).
+    const auto written = [](const ap::Message* message) {
+        return reinterpret_cast<const flatbuffers::Table*>(message->payload_as_Hello())
+            ->CheckField(ap::Hello::VT_SPECTATOR);
+    };
+    CHECK(written(m));
+    // false is the default and is not written: a player's Hello is the one it was before the field.
+    std::vector<std::uint8_t> player_storage;
+    const auto* player = read_back(ap::encode_hello(ap::protocol_version, "eye", "k", true, false), player_storage);
+    CHECK_FALSE(written(player));
+    CHECK_FALSE(ap::decode_hello(*player).value.spectator);
+}
+
 TEST_CASE("Hello with empty strings round-trips", "[protocol]") {
     std::vector<std::uint8_t> storage;
     const auto* m = read_back(ap::encode_hello(0xffff, {}, {}), storage);

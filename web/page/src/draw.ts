@@ -44,8 +44,8 @@ export const KIND_SHIP = 1;
 export const KIND_ROCK = 2;
 export const KIND_BULLET = 3;
 
-/** Metres shown across the canvas's shorter side. */
-const VIEW_METRES = 90;
+/** Metres shown across the canvas's shorter side, around the own ship. */
+export const VIEW_METRES = 90;
 
 export class Painter {
   private readonly g: CanvasRenderingContext2D;
@@ -61,8 +61,10 @@ export class Painter {
     this.g = g;
   }
 
-  /** `player`: the own player's id; its ship is drawn in gold, predicted or not. */
-  frame(world: World, player: number, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number): void {
+  /** `player`: the own player's id; its ship is drawn in gold, predicted or not. `span`: metres
+   *  across the canvas's shorter side (a spectator sees the whole world). */
+  frame(world: World, player: number, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number,
+    span = VIEW_METRES): void {
     const { canvas, g } = this;
     const dpr = window.devicePixelRatio || 1;
     const w = Math.round(canvas.clientWidth * dpr);
@@ -73,7 +75,7 @@ export class Painter {
     }
     this.world = world;
     this.player = player;
-    this.scale = Math.min(w, h) / VIEW_METRES;
+    this.scale = Math.min(w, h) / span;
     this.cx = centre.x;
     this.cy = centre.y;
     g.setTransform(1, 0, 0, 1, 0, 0);

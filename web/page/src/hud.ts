@@ -1,5 +1,5 @@
-// The HUD: the player's score and lives, the scoreboard, and the connection's figures (ping,
-// snapshots a second, the prediction error). Written into the page's elements at most a few
+// The HUD: the player's score and lives (or, for a spectator, that it is spectating), the
+// scoreboard, and the connection's figures (ping, snapshots a second, the prediction error). Written into the page's elements at most a few
 // times a second; the numbers are also data-* attributes so that tests read them exactly.
 
 export interface Line {
@@ -31,6 +31,14 @@ export class Hud {
 
   private shown = 0;
 
+  /** A spectator has no score and no lives: the line says that it watches. */
+  spectating(): void {
+    const own = el('own');
+    own.textContent = 'spectating';
+    own.dataset.spectating = 'true';
+    el('help').textContent = 'spectating: the whole match, no ship of your own';
+  }
+
   setStatus(text: string): void {
     ++this.shown;
     this.status.textContent = text;
@@ -48,6 +56,7 @@ export class Hud {
 
   players(own: number, lines: Line[]): void {
     const me = lines.find((l) => l.playerId === own);
+    // (A spectator's line is gone from the page; writing into the detached elements is harmless.)
     this.score.textContent = String(me?.score ?? 0);
     this.score.dataset.value = String(me?.score ?? 0);
     this.lives.textContent = me ? (me.state === 2 ? 'out' : String(me.lives)) : '–';

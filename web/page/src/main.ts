@@ -1,11 +1,12 @@
 // The page that plays Arena: joins the server it came from (ws://host/ws) with the name from
 // ?name=, sends the keyboard's controls (the SDK sends them once per server tick), and draws
 // what the SDK says to draw at each requestAnimationFrame: the own ship predicted with the
-// server's world in WebAssembly, everything else interpolated from the snapshots.
+// server's world in WebAssembly, everything else interpolated from the snapshots. With
+// ?spectate it watches instead: no ship, no controls, the whole world on the canvas.
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 import { connect } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
-import { Body, Flash, KIND_SHIP, Painter, StaticBody, World } from './draw.js';
+import { Body, Flash, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
 import { Hud, Line } from './hud.js';
 
 const FLASH_MS = 600;
@@ -18,6 +19,10 @@ function keep(samples: number[], value: number): void {
 
 interface PageState {
   client: unknown;
+  /** ?spectate: watching without a body. */
+  spectating: boolean;
+  /** Bodies drawn in the last frame. */
+  drawn: number;
   playerId: number;
   entityId: number;
   /** The own body as the last snapshot from the server had it (not predicted). */
@@ -49,18 +54,21 @@ async function main(): Promise<void> {
   const canvas = document.getElementById('game') as HTMLCanvasElement;
   const painter = new Painter(canvas);
   const hud = new Hud();
-  const controls = new Controls(window);
   const params = new URLSearchParams(location.search);
-  const name = (params.get('name') ?? '').trim() || 'player';
+  const spectating = params.has('spectate');
+  // A spectator has no controls: the keys do nothing (and scroll nothing away).
+  const controls = spectating ? null : new Controls(window);
+  const name = (params.get('name') ?? '').trim() || (spectating ? 'spectator' : 'player');
   const page: PageState = {
-    client: null, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
+    client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, bye: null, error: '',
   };
   window.arenaPage = page;
 
-  hud.setStatus(`joining as ${name}…`);
+  hud.setStatus(spectating ? `joining to watch as ${name}…` : `joining as ${name}…`);
+  if (spectating) hud.spectating();
   const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  const client = await connect(`${scheme}//${location.host}/ws`, name, params.get('token') ?? '');
+  const client = await connect(`${scheme}//${location.host}/ws`, name, params.get('token') ?? '', { spectate: spectating });
   page.client = client;
 
   let world: World = { wraps: false, width: 0, height: 0 };
@@ -114,21 +122,27 @@ async function main(): Promise<void> {
   });
 
   const draw = (now: number) => {
-    const c = controls.read();
-    client.input(c.thrust, c.turn, c.buttons);
+    if (controls) {
+      const c = controls.read();
+      client.input(c.thrust, c.turn, c.buttons);
+    }
     const state = client.stateAt(now);
     const bodies = state.bodies as Body[];
     // After a respawn the player has a new body, which the SDK does not predict yet (its
-    // README, "Not yet"): it is drawn interpolated, and the view still follows it.
-    const mine = state.own ?? bodies.find((b) => b.owner === page.playerId && b.kind === KIND_SHIP);
+    // README, "Not yet"): it is drawn interpolated, and the view still follows it. A
+    // spectator's view is the whole world, centred on its middle (positions are in [0, size)).
+    const mine = spectating ? null : state.own ?? bodies.find((b) => b.owner === page.playerId && b.kind === KIND_SHIP);
     if (mine) centre = { x: mine.x, y: mine.y };
+    else if (spectating) centre = { x: world.width / 2, y: world.height / 2 };
+    const span = spectating && world.width > 0 ? Math.max(world.width, world.height) : VIEW_METRES;
     for (const b of bodies) lastSeen.set(b.id, { x: b.x, y: b.y, r: b.shape?.radius ?? 1 });
     if (lastSeen.size > 4 * bodies.length + 64) {
       const live = new Set(bodies.map((b) => b.id));
       for (const id of lastSeen.keys()) if (!live.has(id)) lastSeen.delete(id);
     }
     flashes = flashes.filter((f) => now - f.born < f.life);
-    painter.frame(world, page.playerId, centre, statics, bodies, flashes, now);
+    painter.frame(world, page.playerId, centre, statics, bodies, flashes, now, span);
+    page.drawn = bodies.length;
     if (unrendered !== null) keep(page.arrivalToRender, performance.now() - unrendered);
     unrendered = null;
 

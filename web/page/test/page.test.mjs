@@ -1,7 +1,8 @@
 // The page in a real browser (Debian's chromium, headless, driven by npm's puppeteer-core)
 // against a real arena-server playing Asteroids, started with --http-port and no --web-root:
 // the build put the page in build/web, beside bin/. A second page joins as a separate client
-// and watches the probe's ship in its own snapshots from the server.
+// and watches the probe's ship in its own snapshots from the server; a third watches the match
+// as a spectator (/?spectate): no ship of its own, every body drawn, counted by the server.
 //   ARENA_SERVER   the arena-server binary       ARENA_CHROMIUM  the browser
 //   NODE_PATH      the page's node_modules (puppeteer-core, from web/page/package-lock.json)
 import { spawn } from 'node:child_process';
@@ -67,13 +68,13 @@ after(async () => {
   rmSync(dir, { recursive: true, force: true });
 });
 
-async function open(name) {
+async function open(name, query = '') {
   const page = await browser.newPage();
   await page.setViewport({ width: 800, height: 600 });
   const problems = [];
   page.on('pageerror', (e) => problems.push(e.message));
   page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
-  await page.goto(`${url}?name=${name}`);
+  await page.goto(`${url}?name=${name}${query}`);
   await until(`${name}'s welcome`, () => page.evaluate(() => window.arenaPage?.snapshots > 2 && window.arenaPage.playerId > 0)).catch((e) => {
     throw new Error(`${e.message}: ${problems.join('; ')}`);
   });
@@ -124,6 +125,7 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   const distance = Math.hypot(wrap(moved.x - start.x), wrap(moved.y - start.y));
   console.log(`thrust for 1.5 s moved the probe's ship ${distance.toFixed(1)} m in the server's snapshots`);
   assert.ok(distance > 5, `the ship moved ${distance} m`);
+
 
   // Space fires: the server's count of shots rises (arena_shots_total on /metrics; the
   // scoreboard lines the clients get carry shots only along with a change of score or lives).
@@ -198,10 +200,46 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   assert.match(figures.hud, /ping \d+(\.\d+)? ms/);
   assert.match(figures.hud, /probe/, 'the scoreboard names the probe');
 
+  // A spectator watches: the players' ships (and every other body) drawn, none of its own, the
+  // HUD says so beside the scoreboard, its keys do nothing, and the server counts it apart.
+  // Opened after the probe's figures are taken: its tab in front pauses the probe's frames.
+  const metric = async (name) => Number((await (await fetch(`${url}metrics`)).text()).match(new RegExp(`^${name} (\\d+)$`, 'm'))?.[1] ?? NaN);
+  const { page: eye, problems: eyeProblems } = await open('eye', '&spectate');
+  const seen = await until('the players\' ships drawn on the spectator\'s page', () => eye.evaluate(() => {
+    const p = window.arenaPage;
+    const players = p.view.bodies.filter((b) => b.owner !== 0).length;
+    return p.drawn > 0 && players > 0 ? { drawn: p.drawn, received: p.view.bodies.length, players } : null;
+  }));
+  const eyeState = await eye.evaluate(() => ({
+    spectating: window.arenaPage.spectating && window.arenaPage.client.spectating,
+    entityId: window.arenaPage.entityId,
+    own: window.arenaPage.client.stateAt(performance.now()).own,
+    ownBodies: window.arenaPage.view.bodies.filter((b) => b.owner === window.arenaPage.playerId).length,
+    hud: document.getElementById('hud').innerText,
+  }));
+  console.log(`the spectator received ${seen.received} bodies (${seen.players} of the players) and drew ${seen.drawn}`);
+  assert.equal(eyeState.spectating, true);
+  assert.equal(eyeState.entityId, 0, 'no body of its own');
+  assert.equal(eyeState.own, null, 'no own ship to draw');
+  assert.equal(eyeState.ownBodies, 0);
+  assert.match(eyeState.hud, /spectating/);
+  await until('the probe on the spectator\'s scoreboard', () => eye.evaluate(() => /probe/.test(document.getElementById('scoreboard').innerText)));
+  assert.equal(await metric('arena_spectators_connected'), 1, 'the server counts one spectator');
+  assert.equal(await metric('arena_players_connected'), 2, 'and two players');
+  await eye.keyboard.down('ArrowUp');
+  await eye.keyboard.down(' ');
+  await sleep(500);
+  await eye.keyboard.up(' ');
+  await eye.keyboard.up('ArrowUp');
+  assert.equal(await eye.evaluate(() => window.arenaPage.bye), null, 'its keys send nothing the server refuses');
+  assert.equal(await metric('arena_spectators_connected'), 1);
+
   // The server ends the match; the HUD's score is the server's, as --stats-json has it.
   proc.kill('SIGTERM');
   const bye = await until('the Bye', () => probe.evaluate(() => window.arenaPage.bye));
   assert.match(bye.reason, /SIGTERM/);
+  const eyeBye = await until('the spectator\'s Bye', () => eye.evaluate(() => window.arenaPage.bye));
+  assert.match(eyeBye.reason, /SIGTERM/, 'the spectator gets the last Bye too');
   await exited;
   const stats = JSON.parse(readFileSync(statsFile, 'utf8'));
   const line = stats.scoreboard.find((l) => l.name === 'probe');
@@ -210,4 +248,5 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   assert.equal(await hudScore(), line.score, 'the HUD shows the server\'s score');
   console.log(`score ${line.score} on the HUD and in the server's --stats-json, ${line.shots} shots`);
   assert.deepEqual(problems, [], 'no errors in the page');
+  assert.deepEqual(eyeProblems, [], 'no errors in the spectator\'s page');
 });

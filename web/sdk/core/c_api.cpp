@@ -60,7 +60,7 @@ struct client {
     std::vector<sdk_shape> shapes;
     std::vector<sdk_static> statics;
     float predicted[6] = {};
-    explicit client(bool delta) : session(delta) {}
+    client(bool delta, bool spectator) : session(delta, spectator) {}
 };
 
 struct replay {
@@ -82,8 +82,9 @@ std::uint32_t out_size(std::span<const std::uint8_t> frame) {
 
 // --- session ------------------------------------------------------------------------------
 
-ARENA_API client* arena_session_new(int delta_snapshots) {
-    return new client(delta_snapshots != 0);
+// spectator: join to watch (Hello.spectator), without a body; arena_input then encodes nothing.
+ARENA_API client* arena_session_new(int delta_snapshots, int spectator) {
+    return new client(delta_snapshots != 0, spectator != 0);
 }
 ARENA_API void arena_session_free(client* c) {
     delete c;

@@ -12,7 +12,8 @@
 
 namespace arena::sdk {
 
-session::session(bool delta_snapshots) : delta_snapshots_(delta_snapshots), frames_(protocol::max_server_frame_body) {}
+session::session(bool delta_snapshots, bool spectator)
+    : delta_snapshots_(delta_snapshots), spectator_(spectator), frames_(protocol::max_server_frame_body) {}
 
 protocol::Payload session::fail(std::string reason) {
     if (!ended_) error_ = std::move(reason);
@@ -164,11 +165,11 @@ const world::body* session::predicted() const {
 }
 
 std::span<const std::uint8_t> session::hello(std::string_view name, std::string_view token) {
-    return keep(protocol::encode_hello(protocol::protocol_version, name, token, delta_snapshots_));
+    return keep(protocol::encode_hello(protocol::protocol_version, name, token, delta_snapshots_, spectator_));
 }
 
 std::span<const std::uint8_t> session::input(float thrust, float turn, std::uint8_t buttons) {
-    if (!predictor_ || ended_) return {};
+    if (!predictor_ || ended_ || spectator_) return {};
     const world::player_input in{thrust, turn, buttons};
     const std::uint32_t sequence = predictor_->last_sequence() + 1;
     predictor_->on_input(sequence, in);

@@ -26,8 +26,10 @@ namespace arena::sdk {
 
 class session {
 public:
-    // delta_snapshots: ask for delta snapshots (Hello.delta_snapshots).
-    explicit session(bool delta_snapshots = true);
+    // delta_snapshots: ask for delta snapshots (Hello.delta_snapshots). spectator: join to
+    // watch (Hello.spectator): no body, no inputs; the server sends full snapshots of the
+    // whole world.
+    explicit session(bool delta_snapshots = true, bool spectator = false);
 
     // --- what the server sent -------------------------------------------------------------
     // Exactly one frame, length prefix included (one WebSocket message). Returns the message's
@@ -38,7 +40,8 @@ public:
     // --- what the client sends (each returns one frame, valid until the next call) ---------
     std::span<const std::uint8_t> hello(std::string_view name, std::string_view token);
     // Numbers the input, predicts it (once a snapshot placed the body) and encodes it with
-    // the newest delta view decoded as the acknowledgement. Empty before the Welcome.
+    // the newest delta view decoded as the acknowledgement. Empty before the Welcome, and for
+    // a spectator (the server refuses its Inputs).
     std::span<const std::uint8_t> input(float thrust, float turn, std::uint8_t buttons);
     std::span<const std::uint8_t> ping(std::uint64_t client_time);
     std::span<const std::uint8_t> bye(std::string_view reason);
@@ -48,6 +51,7 @@ public:
     // --- state ----------------------------------------------------------------------------
     [[nodiscard]] bool joined() const { return predictor_.has_value(); }
     [[nodiscard]] bool ended() const { return ended_; }
+    [[nodiscard]] bool spectator() const { return spectator_; }
     [[nodiscard]] const std::string& error() const { return error_; }
     [[nodiscard]] std::uint32_t player_id() const { return player_id_; }
     [[nodiscard]] std::uint32_t entity_id() const { return entity_id_; }
@@ -80,6 +84,7 @@ private:
     std::span<const std::uint8_t> keep(std::vector<std::uint8_t> frame);
 
     bool delta_snapshots_;
+    bool spectator_;
     bool ended_ = false;
     std::string error_;
     protocol::frame_reader frames_;

@@ -16,7 +16,7 @@ export interface CoreModule {
   _malloc(size: number): number;
   _free(pointer: number): void;
 
-  _arena_session_new(deltaSnapshots: number): number;
+  _arena_session_new(deltaSnapshots: number, spectator: number): number;
   _arena_session_free(session: number): void;
   _arena_feed(session: number, data: number, size: number): number;
   _arena_ended(session: number): number;

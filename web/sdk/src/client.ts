@@ -1,4 +1,5 @@
-// What a game developer uses: connect(url, name, token), events, input(), stateAt(). The
+// What a game developer uses: connect(url, name, token), events, input(), stateAt(); with
+// {spectate: true} the same client watches the match without a body. The
 // WebSocket carries one protocol frame per binary message; every frame goes through the
 // WebAssembly core first (verification, Welcome checks, delta decoding, prediction), then
 // the SDK reads the rest (names, scoreboard, game events) with the generated TypeScript.
@@ -31,6 +32,9 @@ export interface ConnectOptions {
   autoPump?: boolean;
   /** Ask for delta snapshots (default true). */
   deltaSnapshots?: boolean;
+  /** Watch the match without a body (Hello.spectator, default false): the server sends the
+   *  whole world and the scoreboard; input() does nothing and stateAt().own is null. */
+  spectate?: boolean;
   interpolation?: Partial<InterpolationOptions>;
   smoothing?: SmoothingOptions;
 }
@@ -103,7 +107,7 @@ export class ArenaClient {
   constructor(core: Core, socket: SocketLike, name: string, token: string, options: ConnectOptions) {
     this.options = options;
     this.now = options.now ?? (() => performance.now());
-    this.session = new CoreSession(core, options.deltaSnapshots ?? true);
+    this.session = new CoreSession(core, options.deltaSnapshots ?? true, options.spectate ?? false);
     this.socket = socket;
     socket.binaryType = 'arraybuffer';
     socket.onopen = () => socket.send(this.session.hello(name, token));
@@ -125,9 +129,16 @@ export class ArenaClient {
     for (const h of (this.handlers[event] as Handler<Events[K]>[] | undefined) ?? []) h(value);
   }
 
+  /** Whether this client watches the match (options.spectate): it has no body and sends no input. */
+  get spectating(): boolean {
+    return this.session.spectator;
+  }
+
   /** The controls from now on: thrust and turn in [−1, 1], buttons bit 0 the impulse (fire).
-   *  They are sent once per server tick (pump), as the server consumes them. */
+   *  They are sent once per server tick (pump), as the server consumes them. A spectator's are
+   *  ignored: the server refuses its Inputs. */
   input(thrust: number, turn: number, buttons: number): void {
+    if (this.spectating) return;
     const clamp = (v: number) => (Number.isFinite(v) ? Math.max(-1, Math.min(1, v)) : 0);
     this.controls = { thrust: clamp(thrust), turn: clamp(turn), buttons: buttons & 0xff };
   }
@@ -138,6 +149,8 @@ export class ArenaClient {
     if (!this.welcome || this.done) return;
     const due = Math.floor(((now - this.tickStart) * this.welcome.tickRate) / 1000);
     if (due - this.ticksSent > 4) this.ticksSent = due - 4;
+    // A spectator sends only the Pings: they are what keeps it from the server's idle timeout.
+    if (this.spectating) this.ticksSent = due;
     while (this.ticksSent < due) {
       ++this.ticksSent;
       const { thrust, turn, buttons } = this.controls;

@@ -16,10 +16,15 @@ export class CoreSession {
   private readonly core: Core;
   private handle: number;
 
-  /** deltaSnapshots: ask the server for delta snapshots (decoded here with its codec). */
-  constructor(core: Core, deltaSnapshots = true) {
+  /** Whether this session watches (Hello.spectator): no body, no inputs. */
+  readonly spectator: boolean;
+
+  /** deltaSnapshots: ask the server for delta snapshots (decoded here with its codec).
+   *  spectator: join to watch without a body; input() then encodes nothing. */
+  constructor(core: Core, deltaSnapshots = true, spectator = false) {
     this.core = core;
-    this.handle = core.module._arena_session_new(deltaSnapshots ? 1 : 0);
+    this.spectator = spectator;
+    this.handle = core.module._arena_session_new(deltaSnapshots ? 1 : 0, spectator ? 1 : 0);
   }
 
   /** Frees the session's memory in the module; the object is unusable afterwards. */
@@ -49,7 +54,8 @@ export class CoreSession {
   hello(name: string, token: string): Uint8Array {
     return this.out(this.core.withStrings([name, token], (n, t) => this.core.module._arena_hello(this.handle, n, t)));
   }
-  /** Numbers and predicts the input; an empty frame before the Welcome or after the end. */
+  /** Numbers and predicts the input; an empty frame before the Welcome, after the end, and
+   *  for a spectator. */
   input(thrust: number, turn: number, buttons: number): Uint8Array {
     return this.out(this.core.module._arena_input(this.handle, thrust, turn, buttons));
   }

@@ -2,6 +2,7 @@
 // build): the Hello and every Input the SDK sends equal the native session's bytes and read
 // back through the generated TypeScript to the controls given (frames round trip); events
 // come; stateAt draws the own body predicted and the others interpolated; close() says Bye.
+// A spectator (spectate: true) sends Hello.spectator and no Input, and draws with no own ship.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -90,4 +91,53 @@ test('a frame the core refuses ends the session with a bye event that says why',
   assert.equal(byes.length, 1);
   assert.match(byes[0].reason, /invalid message from the server/);
   assert.equal(socket.closed, true);
+});
+
+test('a spectator says so in its Hello, sends no Input, and draws the whole match with no own ship', async () => {
+  const core = await loadCore();
+  const watched = recorded.spectator;
+  let socket;
+  let now = 1000;
+  const client = await sdk.connect('ws://test/ws', 'watcher', '', { core, socket: () => (socket = new FakeSocket()), now: () => now, autoPump: false, spectate: true });
+  assert.equal(client.spectating, true);
+  let welcome = null;
+  const counts = [];
+  client.on('welcome', (w) => (welcome = w));
+  client.on('snapshot', (s) => counts.push(s.bodies.length));
+  socket.onopen({});
+  const hello = socket.sent.shift();
+  assert.deepEqual(hello, fromBase64(watched.hello), "the native spectator session's Hello");
+  const read = sdk.readMessage(hello).payload(new protocol.Hello());
+  assert.equal(read.spectator(), true);
+  assert.equal(read.name(), 'watcher');
+
+  let sentInputs = 0, pings = 0, lastState = null;
+  for (const encoded of watched.frames) {
+    const frame = fromBase64(encoded);
+    socket.onmessage({ data: frame.buffer.slice(frame.byteOffset, frame.byteOffset + frame.length) });
+    if (sdk.readMessage(frame).payloadType() !== sdk.Payload.Snapshot) continue;
+    now += 50;  // one snapshot interval at 20 Hz
+    client.input(1, 1, 1);  // a spectator's controls do nothing
+    client.pump(now);
+    for (const f of socket.sent.splice(0)) {
+      const type = sdk.readMessage(f).payloadType();
+      if (type === sdk.Payload.Input) ++sentInputs;
+      if (type === sdk.Payload.Ping) ++pings;
+    }
+    if (counts.length > 10) lastState = client.stateAt(now);
+  }
+  assert.ok(welcome, 'welcomed');
+  assert.ok(welcome.playerId > 0);
+  assert.equal(welcome.entityId, 0, 'no body of its own');
+  assert.equal(welcome.viewRadius, 0, 'the whole world');
+  assert.deepEqual(counts, watched.bodies, 'every snapshot with the bodies the native session decoded');
+  assert.ok(counts.length > 150, `${counts.length} snapshots`);
+  assert.equal(sentInputs, 0, 'no Input');
+  assert.ok(pings > 0, 'Pings keep it from the idle timeout');
+  assert.ok(lastState, 'a state to draw');
+  assert.equal(lastState.own, null, 'no own ship');
+  assert.ok(lastState.bodies.length > 0);
+  assert.ok(lastState.bodies.every((b) => !b.predicted && b.owner !== welcome.playerId));
+  assert.ok(lastState.bodies.some((b) => b.kind === 1 && b.owner !== 0), "the player's ship is drawn");
+  assert.ok(lastState.bodies.some((b) => b.kind === 2), 'rocks with their shapes');
 });
