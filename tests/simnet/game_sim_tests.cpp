@@ -108,3 +108,50 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
         REQUIRE(c.outcome().scoreboard.size() == result.scoreboard.size());
     }
 }
+
+TEST_CASE("own shots predicted by the clients spawn exactly as the server's, over a stream without loss",
+          "[simnet][match][game][shots]") {
+    // Streams at loopback latency, nothing lost: full BodyState snapshots of the whole world,
+    // and delta snapshots of a 100 m view.
+    const bool delta = GENERATE(false, true);
+    INFO((delta ? "delta snapshots, 100 m view" : "BodyState snapshots of the whole world"));
+    sim_options o;
+    o.kind = link_kind::stream;
+    o.clients = 10;
+    o.up.latency = o.down.latency = ms / 10;
+    o.delta_snapshots = delta;
+    o.behavior = bots::behavior_choice::hunter;
+    o.seed = 17;
+    match::match_config config;
+    config.preset = "asteroids";
+    config.max_players = 10;
+    config.view_radius = delta ? 100.0f : 0.0f;
+    world::world_config world = *world::preset_by_name("asteroids");
+    world.rules = world::game_rules::asteroids;
+    match_sim sim(config, world, o);
+    sim.run_ticks(1800);
+    for (std::size_t i = 0; i < sim.size(); ++i) sim.client(i).add_final_figures(sim.shared().metrics());
+    bots::fleet_metrics& m = sim.shared().metrics();
+    const bots::shot_counts& shots = m.own_shots;
+    const std::uint64_t fired = sim.match().counters().shots;
+    const std::uint64_t matched = shots.exact + shots.with_error;
+    const bots::summary error = m.own_shot_error_m.summarize();
+    INFO("own shots: " << shots.exact << " exact, " << shots.with_error << " with error (p99 " << error.p99 << " m), "
+                       << shots.unconfirmed << " unconfirmed, " << shots.unpredicted << " unpredicted, of the server's "
+                       << fired);
+    // Most of the server's shots were predicted: the others came when a bullet of a ship at
+    // its cap hit a rock between two snapshots (the client does not simulate rocks), which
+    // frees the gun on the server before the client learns of it. Measured: 90 % and 88 %.
+    REQUIRE(fired > 300);
+    CHECK(matched * 100 >= fired * 80);
+    CHECK(shots.unconfirmed * 100 <= fired);
+    if (!delta) {
+        // The server's floats arrive unchanged: every matched spawn is bit-exact (measured 417 of 417).
+        CHECK(shots.exact * 100 >= matched * 99);
+    } else {
+        // Quantised states (positions within 2 mm, velocities within 16 mm/s) cannot give the
+        // same bits; the spawn is then off by the quantisation (measured p99 2.7 mm, max 3.1 mm).
+        CHECK(error.p99 < 0.005);
+        CHECK(error.max < 0.01);
+    }
+}
