@@ -62,7 +62,7 @@ struct fanout_counters {
     uint64_t delta_bodies = 0;         // bodies in the views those frames carried
     uint64_t full_frames = 0;          // BodyState frames sent (clients without delta_snapshots)
     uint64_t shapes_sent = 0;          // body shapes described, summed over the clients that got them
-    uint64_t shape_bytes = 0;          // their BodyShape and ShapeVertex bytes, summed the same way
+    uint64_t shape_bytes = 0;          // their BodyShape, ShapeVertex and ShotOrigin bytes, summed the same way
     uint64_t trimmed_frames = 0;       // delta frames that held part of their view (over the client's budget)
     uint64_t left_out_bodies = 0;      // bodies of their views those frames left out, summed
 };

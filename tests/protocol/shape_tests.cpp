@@ -216,7 +216,7 @@ TEST_CASE("decode_welcome refuses static geometry that does not line up", "[prot
     CHECK(back.error == "Welcome: static_bodies[0] is body 5, its shape is body 4");
 }
 
-TEST_CASE("Shot origins ride with their shapes and round-trip exactly; a non-finite one is refused",
+TEST_CASE("Shot origins ride with their shapes and round-trip exactly, and a non-finite one is refused",
           "[protocol][shapes][shots]") {
     ap::shape_list list;
     list.append(circle(5, 0.2f));
