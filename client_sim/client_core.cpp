@@ -176,7 +176,7 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
                                      [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
     const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
-    const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
+    const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own, bodies, snapshot.shot_origins);
     if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {
         return end(end_kind::protocol_error, c.problem == predictor::ack_problem::went_back
                                                  ? "Snapshot: ack_sequence went back"
@@ -190,6 +190,7 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
             m.interval_prediction_error_m.add(*c.error);
         }
         m.input_lag_ticks.add(static_cast<double>(predictor_->last_sequence() - snapshot.ack_sequence));
+        for (const float e : predictor_->take_shot_errors()) m.own_shot_error_m.add(e);
     }
     behavior_->observe(bodies, entity_id_);
 }
@@ -414,7 +415,15 @@ void client_core::end(end_kind kind, const std::string& reason) {
 }
 
 void client_core::add_final_figures(fleet_metrics& m) const {
-    if (outcome_.misbehaving || snapshots_ < 2) return;
+    if (outcome_.misbehaving) return;
+    if (predictor_) {
+        const shot_counts& shots = predictor_->shots().counts();
+        m.own_shots.exact += shots.exact;
+        m.own_shots.with_error += shots.with_error;
+        m.own_shots.unconfirmed += shots.unconfirmed;
+        m.own_shots.unpredicted += shots.unpredicted;
+    }
+    if (snapshots_ < 2) return;
     const double seconds = static_cast<double>(last_snapshot_at_ - first_snapshot_at_) / 1e9;
     if (seconds > 0) m.snapshots_per_s_per_bot.add(static_cast<double>(snapshots_ - 1) / seconds);
 }

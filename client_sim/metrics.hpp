@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "client_sim/own_shots.hpp"
 #include "client_sim/stats.hpp"
 #include "protocol/game.hpp"
 
@@ -65,6 +66,7 @@ struct fleet_metrics {
     std::uint64_t game_bytes = 0;            // the game's lines, names and events in snapshots
     std::uint64_t game_events = 0;           // events taken (each once per client)
     std::uint64_t bodies_without_shape = 0;  // bodies in a decoded view whose shape the bot did not hold
+    shot_counts own_shots;                   // predicted own shots, as matched (well-behaved bots, at the end)
 
     // The current second, for the progress line; rolled over by the fleet's reporter.
     std::uint64_t interval_bytes_in = 0;
@@ -81,6 +83,7 @@ struct fleet_metrics {
     sample_set snapshots_per_s_per_bot;  // filled at the end, one value per bot
     sample_set bodies_in_view;           // per snapshot
     sample_set snapshot_bytes_each;      // per snapshot, its frame's bytes
+    sample_set own_shot_error_m;         // spawn error of own shots matched with one, m (own_shots.hpp)
 
     // One value per second of the run, the whole fleet.
     sample_set snapshots_per_s;

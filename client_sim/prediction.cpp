@@ -32,7 +32,8 @@ predictor::predictor(const world::world_config& server_config, std::uint32_t ent
       player_id_(player_id),
       acked_(config_, 0),
       predicted_(config_, 0),
-      inputs_{world::body_input{world::body_id{entity_id}, {}}} {
+      inputs_{world::body_input{world::body_id{entity_id}, {}}},
+      shots_(config_, player_id) {
     pending_.reserve(64);
 }
 
@@ -45,6 +46,14 @@ void predictor::step(world::world& w, const world::player_input& input) {
     w.step(inputs_);
 }
 
+void predictor::step_predicted(std::uint32_t sequence, const world::player_input& input) {
+    // Before the step, as the server's rules fire in before_step.
+    if (alive_) {
+        if (const auto shot = shots_.fire(gun_, sequence, input, *predicted_.find(entity_id_))) shots_.predicted(*shot);
+    }
+    step(predicted_, input);
+}
+
 void predictor::on_input(std::uint32_t sequence, const world::player_input& input) {
     assert(sequence == last_sequence_ + 1 && "inputs are numbered 1, 2, 3, ... without gaps");
     last_sequence_ = sequence;
@@ -54,7 +63,7 @@ void predictor::on_input(std::uint32_t sequence, const world::player_input& inpu
     }
     pending_input p{sequence, input, false, {0, 0}};
     if (placed_) {
-        step(predicted_, input);
+        step_predicted(sequence, input);
         p.predicted = true;
         p.position = predicted_.find(entity_id_)->position;
     }
@@ -92,7 +101,9 @@ void predictor::place_body(const protocol::BodyState& own) {
     placed_ = true;
 }
 
-predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own) {
+predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own,
+                                             std::span<const protocol::BodyState> view,
+                                             std::span<const protocol::ShotOrigin> origins) {
     correction c;
     if (ack_sequence < acked_sequence_) {
         c.problem = ack_problem::went_back;
@@ -102,6 +113,9 @@ predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const p
         c.problem = ack_problem::ahead;
         return c;
     }
+    // The gun after ack_sequence, as the server's confirmed shots tell it.
+    const own_shots::gun acked_gun = shots_.on_snapshot(ack_sequence, origins, view, config_, shot_errors_);
+    alive_ = own != nullptr;
     // Without our body there is nothing to reset to; keep every input for the next snapshot.
     if (own == nullptr) return c;
     c.own_found = true;
@@ -128,7 +142,9 @@ predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const p
 
     // Copy-assignment reuses predicted_'s buffers: no allocation once warm.
     predicted_ = acked_;
-    for (const pending_input& p : pending_) step(predicted_, p.input);
+    gun_ = acked_gun;
+    shots_.forget_after(ack_sequence);
+    for (const pending_input& p : pending_) step_predicted(p.sequence, p.input);
     c.replayed = static_cast<std::uint32_t>(pending_.size());
     return c;
 }

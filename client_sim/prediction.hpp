@@ -9,14 +9,21 @@
 // tick, the prediction is bit-exact: the world is float and the wire carries its floats
 // unchanged (server/world/types.hpp).
 //
+// Under Asteroids rules the ship's own shots are predicted too (own_shots.hpp): an input that
+// fires gives the predicted ship its recoil and spawns a predicted bullet, with the rules'
+// code, and the server's bullet from the same input replaces it when its origin arrives.
+//
 // Prediction error, for input s: the distance between the position predicted for s when it
 // was sent (what a player would have seen) and the position in the snapshot whose
 // ack_sequence is s.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
+#include "client_sim/own_shots.hpp"
 #include "protocol/arena_generated.h"
 #include "server/world/input.hpp"
 #include "server/world/world.hpp"
@@ -42,8 +49,15 @@ public:
         std::uint32_t replayed = 0;  // unacknowledged inputs replayed on top
         ack_problem problem = ack_problem::none;
     };
-    // A snapshot arrived. own: our body's state in it, null when absent.
-    correction on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own);
+    // A snapshot arrived. own: our body's state in it, null when absent; view: every body
+    // in it, by increasing id; origins: its shot origins (every player's).
+    correction on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own,
+                           std::span<const protocol::BodyState> view = {},
+                           std::span<const protocol::ShotOrigin> origins = {});
+    // The own shots: those still predicted, and how the matching went.
+    [[nodiscard]] const own_shots& shots() const { return shots_; }
+    // Spawn errors (m) of the shots matched with an error since the last call.
+    [[nodiscard]] std::vector<float> take_shot_errors() { return std::exchange(shot_errors_, {}); }
 
     // The body as predicted for the last input sent; null before a snapshot placed it.
     [[nodiscard]] const world::body* body() const;
@@ -68,6 +82,8 @@ private:
     };
 
     void step(world::world& w, const world::player_input& input);
+    // Steps predicted_ with input `sequence`, firing (a predicted shot) when the rules would.
+    void step_predicted(std::uint32_t sequence, const world::player_input& input);
     void place_body(const protocol::BodyState& own);
     void set_state(world::world& w, const protocol::BodyState& own);
     // The pending input with this sequence, or null.
@@ -91,6 +107,11 @@ private:
     // from the front, a few elements; no allocation once it reached its working size.
     std::vector<pending_input> pending_;
     world::tick_inputs inputs_;  // reused for every step: one element, our body
+    own_shots shots_;
+    own_shots::gun gun_;  // predicted_'s
+    // The last snapshot held our ship: a dead one (respawning) fires nothing.
+    bool alive_ = false;
+    std::vector<float> shot_errors_;
 };
 
 }  // namespace arena::bots

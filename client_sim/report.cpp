@@ -124,6 +124,9 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     if (!m.prediction_error_m.empty())
         r.prediction_exact_share =
             static_cast<double>(m.predictions_exact) / static_cast<double>(m.prediction_error_m.size());
+    r.own_shots = m.own_shots;
+    if (const std::uint64_t matched = m.own_shots.exact + m.own_shots.with_error; matched != 0)
+        r.own_shot_exact_share = static_cast<double>(m.own_shots.exact) / static_cast<double>(matched);
     r.figures = {
         {"rtt_ms", m.rtt_ms.summarize()},
         {"snapshot_gap_ms", m.snapshot_gap_ms.summarize()},
@@ -135,6 +138,7 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
         {"snapshots_per_s", m.snapshots_per_s.summarize()},
         {"bytes_in_per_s", m.bytes_in_per_s.summarize()},
         {"bytes_out_per_s", m.bytes_out_per_s.summarize()},
+        {"own_shot_error_m", m.own_shot_error_m.summarize()},
     };
     r.rejects = m.rejects;
     r.disconnects = m.disconnects;
@@ -171,6 +175,16 @@ std::string summary_table(const final_report& r) {
                       s.p99, s.max);
     }
     out += format("predictions exactly right: %.2f %%\n", 100.0 * r.prediction_exact_share);
+    const shot_counts& shots = r.own_shots;
+    const summary* shot_error = nullptr;
+    for (const auto& [name, s] : r.figures)
+        if (name == "own_shot_error_m") shot_error = &s;
+    out += format(
+        "own shots: %.2f %% of %llu matched spawned exactly (the others' error p99 %.4f m), %llu unconfirmed, "
+        "%llu unpredicted\n",
+        100.0 * r.own_shot_exact_share, static_cast<unsigned long long>(shots.exact + shots.with_error),
+        shot_error != nullptr ? shot_error->p99 : 0.0, static_cast<unsigned long long>(shots.unconfirmed),
+        static_cast<unsigned long long>(shots.unpredicted));
     out += format("totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu\n",
                   static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
                   static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
@@ -241,6 +255,12 @@ nlohmann::json to_json(const final_report& r) {
         {"delta_problems", tally_json(r.delta_problems)},
         {"figures", figures},
         {"prediction_exact_share", r.prediction_exact_share},
+        {"own_shots",
+         {{"exact", r.own_shots.exact},
+          {"with_error", r.own_shots.with_error},
+          {"unconfirmed", r.own_shots.unconfirmed},
+          {"unpredicted", r.own_shots.unpredicted},
+          {"exact_share", r.own_shot_exact_share}}},
         {"rejects", tally_json(r.rejects)},
         {"disconnects", tally_json(r.disconnects)},
         {"misbehaving_drops", tally_json(r.misbehaving_drops)},

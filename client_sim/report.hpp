@@ -31,8 +31,12 @@ struct final_report {
     std::uint64_t inputs_sent = 0;
     std::uint64_t ticks_skipped = 0;
     double prediction_exact_share = 0;  // [0, 1] of the measured predictions, bit-exact
-    std::uint64_t snapshot_bytes = 0;   // every snapshot frame received
-    std::uint64_t view_bodies = 0;      // bodies in those snapshots
+    // Own shots (Asteroids, own_shots.hpp): how the predicted ones matched the server's, and the
+    // share of matched ones whose spawn was bit-exact ([0, 1]; 0 when none matched).
+    shot_counts own_shots;
+    double own_shot_exact_share = 0;
+    std::uint64_t snapshot_bytes = 0;  // every snapshot frame received
+    std::uint64_t view_bodies = 0;     // bodies in those snapshots
     std::uint64_t delta_snapshots = 0;
     std::uint64_t delta_errors = 0;
     std::uint64_t shapes_received = 0;        // body shapes the snapshots described

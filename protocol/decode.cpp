@@ -162,6 +162,16 @@ result<snapshot_view> decode_snapshot(const Message& message) {
                 return result<snapshot_view>::failure("body " + std::to_string(b.id()) + " has a non-finite " + field);
         }
     }
+    if (const auto* origins = t->shot_origins(); origins != nullptr && origins->size() > 0) {
+        view.shot_origins = {reinterpret_cast<const ShotOrigin*>(origins->Data()), origins->size()};
+        for (const ShotOrigin& o : view.shot_origins) {
+            for (const float v : {o.x(), o.y(), o.vx(), o.vy()}) {
+                if (!std::isfinite(v))
+                    return result<snapshot_view>::failure("the shot origin of body " + std::to_string(o.body_id()) +
+                                                          " is not finite");
+            }
+        }
+    }
     return result<snapshot_view>::success(view);
 }
 

@@ -36,6 +36,9 @@ struct snapshot_view {
     const flatbuffers::Vector<const ShapeVertex*>* shape_vertices = nullptr;
     // The table itself: read_game() (game.hpp) reads the players, names and events from it.
     const Snapshot* table = nullptr;
+    // Where the bullets among `shapes` came from (README.md, "Shot origins"), every number
+    // finite; empty when absent.
+    std::span<const ShotOrigin> shot_origins;
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 

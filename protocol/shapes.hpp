@@ -35,19 +35,23 @@ struct static_body {
     bool operator==(const static_body&) const = default;
 };
 
-// Descriptions laid out as the schema's two vectors, ready to encode.
+// Descriptions laid out as the schema's two vectors, ready to encode, and the origins of the
+// bullets among them (Snapshot.shot_origins: a bullet's origin travels with its shape).
 struct shape_list {
     std::vector<BodyShape> shapes;
     std::vector<ShapeVertex> vertices;
+    std::vector<ShotOrigin> origins;
     void clear() {
         shapes.clear();
         vertices.clear();
+        origins.clear();
     }
     [[nodiscard]] bool empty() const { return shapes.empty(); }
     void append(const shape_desc& d);
     // Bytes these descriptions add to a message, FlatBuffers framing aside.
     [[nodiscard]] std::size_t wire_bytes() const {
-        return shapes.size() * sizeof(BodyShape) + vertices.size() * sizeof(ShapeVertex);
+        return shapes.size() * sizeof(BodyShape) + vertices.size() * sizeof(ShapeVertex) +
+               origins.size() * sizeof(ShotOrigin);
     }
 };
 

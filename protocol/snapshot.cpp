@@ -31,11 +31,15 @@ BodyState finite_copy(const BodyState& b, std::uint64_t& replaced) {
 struct shape_offsets {
     flatbuffers::Offset<flatbuffers::Vector<const BodyShape*>> shapes;
     flatbuffers::Offset<flatbuffers::Vector<const ShapeVertex*>> vertices;
+    flatbuffers::Offset<flatbuffers::Vector<const ShotOrigin*>> origins;  // absent when none
 };
 shape_offsets add_shapes(flatbuffers::FlatBufferBuilder& fbb, const shape_list* list) {
     if (list == nullptr || list->empty()) return {};
-    return {fbb.CreateVectorOfStructs(list->shapes.data(), list->shapes.size()),
-            fbb.CreateVectorOfStructs(list->vertices.data(), list->vertices.size())};
+    shape_offsets out{fbb.CreateVectorOfStructs(list->shapes.data(), list->shapes.size()),
+                      fbb.CreateVectorOfStructs(list->vertices.data(), list->vertices.size()),
+                      {}};
+    if (!list->origins.empty()) out.origins = fbb.CreateVectorOfStructs(list->origins.data(), list->origins.size());
+    return out;
 }
 
 // The game's four vectors, absent when there is nothing to say (as for shapes).
@@ -76,7 +80,7 @@ flatbuffers::Offset<Snapshot> create_snapshot(flatbuffers::FlatBufferBuilder& fb
     const shape_offsets described = add_shapes(fbb, shapes);
     const game_offsets g = add_game(fbb, game);
     return CreateSnapshot(fbb, tick, ack_sequence, bodies, baseline_tick, delta, described.shapes, described.vertices,
-                          g.players, g.name_ids, g.names, g.events);
+                          g.players, g.name_ids, g.names, g.events, described.origins);
 }
 
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,

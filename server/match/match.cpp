@@ -412,9 +412,23 @@ void match::tag_new_bodies() {
     const std::span<const world::body> bodies = world_.bodies();
     auto it = std::lower_bound(bodies.begin(), bodies.end(), kinds_asked_below_,
                                [](const world::body& b, uint32_t id) { return b.id < id; });
-    for (; it != bodies.end(); ++it)
+    for (; it != bodies.end(); ++it) {
         if (const uint8_t kind = rules_->kind_of(it->id); kind != 0) kinds_.set(it->id, kind);
+        if (const rules::shot_record* shot = rules_->shot_of(it->id)) record_origin(it->id, *shot);
+    }
     if (!bodies.empty()) kinds_asked_below_ = std::max(kinds_asked_below_, bodies.back().id + 1);
+}
+
+void match::record_origin(uint32_t body_id, const rules::shot_record& shot) {
+    const auto p = players_.find(world::player_id{shot.shooter});
+    if (p == players_.end()) return;
+    const float values[] = {shot.position.x(), shot.position.y(), shot.velocity.x(), shot.velocity.y()};
+    // A diverged world's NaN stays off the wire, as snapshot encoders keep it out of BodyState.
+    for (const float v : values)
+        if (!std::isfinite(v)) return;
+    // The tick that fired it consumed this input: the bullet appeared in it.
+    origins_.add(
+        {body_id, shot.shooter, p->second.inputs.last_consumed_sequence(), values[0], values[1], values[2], values[3]});
 }
 
 void match::check_clients() {
@@ -480,11 +494,12 @@ void match::send_snapshots() {
     const uint32_t interval = snapshot_interval();
     const uint32_t phase = world_.tick() % interval;
     kinds_.forget_missing(world_.bodies());
+    origins_.forget_missing(world_.bodies());
     // The shared frame (BodyState clients of whole-world views, on the interval's ticks)
     // carries what changed since the previous one: its clients got that one.
     const bool shared_due = phase == 0 && fanout_.shared_full_frame() && !game_.empty();
     if (shared_due) game_.collect(fanout_.last_shared_tick(), fanout_.last_shared_tick(), shared_game_);
-    fanout_.begin(world_, &kinds_, shared_due ? &shared_game_ : nullptr);
+    fanout_.begin(world_, &kinds_, shared_due ? &shared_game_ : nullptr, &origins_);
     // By id rather than by iterator: a send may end a connection, and with it a player.
     for (auto it = players_.begin(); it != players_.end();) {
         const world::player_id id = it->first;

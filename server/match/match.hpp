@@ -200,7 +200,9 @@ private:
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
-    void tag_new_bodies();  // the rules' kind of each body that appeared since the last tick
+    // The rules' kind of each body that appeared since the last tick, and a new bullet's origin.
+    void tag_new_bodies();
+    void record_origin(uint32_t body_id, const rules::shot_record& shot);
     // `r` is a player or a spectator: what it sees is the view around `own`, or with none
     // (a spectator) the whole world; `ack` is its last input consumed.
     template <class Reader>
@@ -231,6 +233,7 @@ private:
     bool draining_ = false;
     snapshot_fanout fanout_;
     body_kinds kinds_;
+    shot_origins origins_;             // the live bullets' (tag_new_bodies)
     uint32_t kinds_asked_below_ = 0;   // the rules were asked the kind of every body id below this
     match_counters counters_;          // departed players' buffers folded in on leave
     game_feed game_;                   // lines, names and events for the players (rules with state)

@@ -15,9 +15,11 @@ snapshot_fanout::snapshot_fanout(const fanout_config& config)
     // back as a client's oldest kept snapshot.
     : config_(config), history_(tick_ring{config.ring.depth * config.ring.interval, 1}) {}
 
-void snapshot_fanout::begin(const world::world& w, const body_kinds* kinds, const protocol::game_list* shared_game) {
+void snapshot_fanout::begin(const world::world& w, const body_kinds* kinds, const protocol::game_list* shared_game,
+                            const shot_origins* origins) {
     world_ = &w;
     kinds_ = kinds != nullptr ? kinds : &no_kinds_;
+    origins_ = origins;
     shared_game_ = shared_game;
     tick_ = w.tick();
     now_ = nullptr;
@@ -45,7 +47,7 @@ void snapshot_fanout::build_shared() {
         shared_shapes_.clear();
         const auto bodies = world_->bodies();
         for (const world::body& b : bodies) {
-            if (b.id >= shared_next_id_) shared_shapes_.append(describe(*world_, b, kinds_->of(b.id)));
+            if (b.id >= shared_next_id_) describe_body(shared_shapes_, b);
         }
         shared_.build(tick_, states(), &shared_shapes_, shared_game_);
         shared_base_tick_ = last_shared_tick_;
@@ -67,9 +69,14 @@ const protocol::snapshot_encoder* snapshot_fanout::shared_frame(snapshot_client&
 void snapshot_fanout::describe_view(snapshot_client& client, uint32_t acked, bool reliable) {
     shapes_.clear();
     const auto bodies = world_->bodies();
-    client.shapes.update(tick_, bodies, view_, acked, reliable,
-                         [&](uint32_t i) { shapes_.append(describe(*world_, bodies[i], kinds_->of(bodies[i].id))); });
+    client.shapes.update(tick_, bodies, view_, acked, reliable, [&](uint32_t i) { describe_body(shapes_, bodies[i]); });
     count_shapes(shapes_);
+}
+
+void snapshot_fanout::describe_body(protocol::shape_list& list, const world::body& b) const {
+    list.append(describe(*world_, b, kinds_->of(b.id)));
+    if (origins_ == nullptr) return;
+    if (const protocol::ShotOrigin* origin = origins_->of(b.id)) list.origins.push_back(*origin);
 }
 
 void snapshot_fanout::count_shapes(const protocol::shape_list& list) {

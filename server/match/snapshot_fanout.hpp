@@ -29,6 +29,7 @@
 #include "protocol/snapshot.hpp"
 #include "server/match/body_kinds.hpp"
 #include "server/match/shape_tracker.hpp"
+#include "server/match/shot_origins.hpp"
 #include "server/match/snapshot_priority.hpp"
 #include "server/match/view_history.hpp"
 #include "server/world/view_index.hpp"
@@ -63,7 +64,7 @@ struct fanout_counters {
     uint64_t delta_bodies = 0;         // bodies in the views those frames carried
     uint64_t full_frames = 0;          // BodyState frames sent (clients without delta_snapshots)
     uint64_t shapes_sent = 0;          // body shapes described, summed over the clients that got them
-    uint64_t shape_bytes = 0;          // their BodyShape and ShapeVertex bytes, summed the same way
+    uint64_t shape_bytes = 0;          // their BodyShape, ShapeVertex and ShotOrigin bytes, summed the same way
     uint64_t trimmed_frames = 0;       // delta frames that held part of their view (over the client's budget)
     uint64_t left_out_bodies = 0;      // bodies of their views those frames left out, summed
 };
@@ -75,9 +76,10 @@ public:
     // A new tick of this world: what the previous tick prepared is stale. `kinds` tags the
     // bodies' shapes (null: every body is kind 0); it must outlive the tick. `shared_game`:
     // what the shared frame carries of the game (the lines and events after
-    // last_shared_tick(), game_feed.hpp), likewise.
+    // last_shared_tick(), game_feed.hpp), likewise. `origins`: the bullets' origins, sent with
+    // their shapes (null: none), likewise.
     void begin(const world::world& w, const body_kinds* kinds = nullptr,
-               const protocol::game_list* shared_game = nullptr);
+               const protocol::game_list* shared_game = nullptr, const shot_origins* origins = nullptr);
     // The tick of the newest shared frame (0: none yet).
     [[nodiscard]] uint32_t last_shared_tick() const { return last_shared_tick_; }
 
@@ -111,6 +113,8 @@ private:
     // Into shapes_: the shapes of view_'s bodies that `client` lacks (acked: a tick sent to it).
     void describe_view(snapshot_client& client, uint32_t acked, bool reliable);
     void count_shapes(const protocol::shape_list& list);
+    // Appends body b's shape to `list`, and its origin when it is a bullet.
+    void describe_body(protocol::shape_list& list, const world::body& b) const;
     void build_shared();  // this tick's shared frame, once
     // delta_frame() for a client with a budget (snapshot_budget.cpp).
     std::span<const uint8_t> budgeted_frame(snapshot_client& client, world::body_id own, uint32_t ack_sequence,
@@ -136,6 +140,7 @@ private:
     std::vector<uint8_t> delta_bytes_;
     std::vector<protocol::BodyState> full_states_;
     const body_kinds* kinds_ = nullptr;
+    const shot_origins* origins_ = nullptr;
     const protocol::game_list* shared_game_ = nullptr;
     body_kinds no_kinds_;
     protocol::shape_list shapes_;         // this frame's descriptions

@@ -100,33 +100,17 @@ void asteroids_rules::before_step(world::world& w, const world::tick_inputs& inp
 }
 
 void asteroids_rules::fire(world::world& w, uint32_t player_id, player& p) {
-    if (w.tick() < p.next_fire) return;
     uint32_t live = 0;
     for (const auto& [id, bl] : bullets_) live += bl.owner == player_id ? 1 : 0;
-    if (live >= params_.max_bullets_per_ship) return;
+    if (!may_fire(w.tick(), p.next_fire, live, params_)) return;
     world::body* ship = w.find(p.ship);
     if (!ship) return;
-    const world::cos_sin r = world::compute_cos_sin(ship->angle);
-    const vec2 facing{r.c, r.s};
-    world::body_material m;
-    m.mass = params_.bullet_mass;
-    m.radius = params_.bullet_radius;
-    m.restitution = 0;
-    m.friction = 0;
-    m.drag_area = 0;
-    const real nose = ship->radius + params_.bullet_radius + 0.1f;
-    world::body bullet = world::make_body(m, ship->position + facing * nose);
-    bullet.owner = 0;  // nobody steers it
-    // The lecture's impulse both ways: Δv = J/m_bullet forwards, −J/m_ship back.
-    const vec2 impulse = facing * params_.bullet_impulse;
-    bullet.velocity = ship->velocity;
-    bullet.apply_impulse(impulse);
-    bullet.filter = {category_bullet, category_rock | category_ship, -static_cast<int32_t>(player_id)};
-    const vec2 recoil = -impulse;
-    ship->apply_impulse(recoil);  // `ship` may move in memory once the bullet is added
-    const std::optional<uint32_t> id = w.add_body(bullet);
+    const shot s = make_shot(*ship, player_id, params_);
+    ship->apply_impulse(s.recoil);  // `ship` may move in memory once the bullet is added
+    const std::optional<uint32_t> id = w.add_body(s.bullet);
     if (!id) return;
-    bullets_[*id] = {player_id, w.tick() + params_.bullet_lifetime_ticks};
+    bullets_[*id] = {
+        player_id, w.tick() + params_.bullet_lifetime_ticks, {player_id, s.bullet.position, s.bullet.velocity}};
     p.next_fire = w.tick() + params_.fire_cooldown_ticks;
     ++p.score.shots;
 }
@@ -335,6 +319,11 @@ uint8_t asteroids_rules::kind_of(uint32_t body_id) const {
 uint32_t asteroids_rules::rock_size(uint32_t id) const {
     const auto it = rocks_.find(id);
     return it == rocks_.end() ? 0 : it->second;
+}
+
+const shot_record* asteroids_rules::shot_of(uint32_t body_id) const {
+    const auto it = bullets_.find(body_id);
+    return it == bullets_.end() ? nullptr : &it->second.spawned;
 }
 
 uint32_t asteroids_rules::bullet_owner(uint32_t id) const {

@@ -17,38 +17,16 @@
 #include <map>
 #include <vector>
 
+#include "server/rules/asteroids_shot.hpp"
 #include "server/rules/rules.hpp"
 #include "server/world/rng.hpp"
 
 namespace arena::rules {
 
-inline constexpr uint8_t button_fire = 1u << 1;
-
-// Filter categories (world/filter.hpp). Rocks keep the default category 1.
-inline constexpr uint32_t category_rock = 1u << 0;
-inline constexpr uint32_t category_ship = 1u << 1;
-inline constexpr uint32_t category_bullet = 1u << 2;
-
 // BodyShape.kind of the game's bodies (protocol/README.md); a rock's size is in its shape.
 inline constexpr uint8_t kind_ship = 1;
 inline constexpr uint8_t kind_rock = 2;
 inline constexpr uint8_t kind_bullet = 3;
-
-struct asteroids_params {
-    world::real bullet_impulse = 2.0f;    // N·s, J
-    world::real bullet_mass = 0.05f;      // kg: 40 m/s from J = 2 N·s
-    world::real bullet_radius = 0.2f;     // m
-    uint32_t fire_cooldown_ticks = 6;     // 0.1 s at 60 Hz
-    uint32_t bullet_lifetime_ticks = 72;  // 1.2 s at 60 Hz
-    uint32_t max_bullets_per_ship = 4;    // live at once
-    uint32_t lives = 3;                   // respawns: the fourth death is the last
-    uint32_t respawn_ticks = 120;         // 2 s at 60 Hz
-    uint32_t invulnerable_ticks = 120;    // 2 s after a respawn
-    world::real split_impulse = 20.0f;    // N·s given to each piece, across the rock's velocity
-    world::real wave_rock_radius = 5.0f;  // m, a new wave's large rocks
-    world::real spawn_clearance = 15.0f;  // m kept free around a respawn or a wave's rock
-    uint32_t score_large = 20, score_medium = 50, score_small = 100, score_ship = 200;
-};
 
 class asteroids_rules : public rules {
 public:
@@ -72,6 +50,7 @@ public:
     const asteroids_params& params() const { return params_; }
     // Rock size of body `id`: 3 large, 2 medium, 1 small, 0 not a rock.
     uint32_t rock_size(uint32_t id) const;
+    const shot_record* shot_of(uint32_t body_id) const override;
     // The owner of bullet `id`, or 0 when it is not a live bullet.
     uint32_t bullet_owner(uint32_t id) const;
     // True while `player`'s ship passes through everything after a respawn.
@@ -93,6 +72,9 @@ private:
     struct bullet {
         uint32_t owner = 0;
         uint32_t expires = 0;  // world tick at which it is removed
+        // For the wire (shot_of) only: it decides nothing in the game, so hash() leaves it out
+        // and recordings keep their hashes.
+        shot_record spawned;
     };
 
     void make_ship(world::world& w, uint32_t player_id, player& p, uint32_t body_id, bool invulnerable);

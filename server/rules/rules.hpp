@@ -47,6 +47,14 @@ struct game_event {
     bool operator==(const game_event&) const = default;
 };
 
+// A bullet's shooter and its state as it spawned, before the world's step moved it: what a
+// client that predicts its own shots compares its prediction with (protocol ShotOrigin).
+struct shot_record {
+    uint32_t shooter = 0;        // player id
+    world::vec2 position{0, 0};  // m
+    world::vec2 velocity{0, 0};  // m/s
+};
+
 class rules {
 public:
     virtual ~rules() = default;
@@ -66,6 +74,9 @@ public:
     // What body `id` is, for drawing (protocol BodyShape.kind: the game defines the values);
     // 0 = a plain body. The match asks once, in the tick the body appears.
     virtual uint8_t kind_of(uint32_t /*body_id*/) const { return 0; }
+    // Where body `id` was fired from, when it is a live shot (the match asks in the tick it
+    // appears); null for any other body.
+    virtual const shot_record* shot_of(uint32_t /*body_id*/) const { return nullptr; }
     // False: the rules keep no state, and the state hash is the world's own.
     virtual bool has_state() const { return false; }
     // Every field of the rules' state, in a fixed order.

@@ -39,6 +39,8 @@ ap::shape_list some_shapes() {
         d.radius = 0.5f;
         for (int i = 0; i < 10; ++i) d.xy[i] = static_cast<float>(i) - 4.0f;
         list.append(d);
+        // Some of them bullets, whose origins (appended since) an old client skips unread.
+        if (id % 3 == 0) list.origins.emplace_back(id, 7, 100 + id, 1.0f, 2.0f, 40.0f, 0.0f);
     }
     return list;
 }

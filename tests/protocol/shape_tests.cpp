@@ -215,3 +215,38 @@ TEST_CASE("decode_welcome refuses static geometry that does not line up", "[prot
     CHECK_FALSE(back);
     CHECK(back.error == "Welcome: static_bodies[0] is body 5, its shape is body 4");
 }
+
+TEST_CASE("Shot origins ride with their shapes and round-trip exactly, and a non-finite one is refused",
+          "[protocol][shapes][shots]") {
+    ap::shape_list list;
+    list.append(circle(5, 0.2f));
+    list.origins.emplace_back(5, 2, 41, 10.5f, -3.25f, 40.0f, 0.125f);
+    REQUIRE(list.wire_bytes() == 12 + 8 + 28);
+    flatbuffers::FlatBufferBuilder fbb;
+    const auto frame = ap::encode_delta_snapshot(fbb, 8, 41, 0, std::vector<std::uint8_t>{1}, &list);
+    const auto view = ap::decode_snapshot(verified(std::vector<std::uint8_t>(frame.begin(), frame.end())));
+    REQUIRE(view);
+    REQUIRE(view.value.shot_origins.size() == 1);
+    const ap::ShotOrigin& o = view.value.shot_origins[0];
+    CHECK(o.body_id() == 5);
+    CHECK(o.owner() == 2);
+    CHECK(o.input_sequence() == 41);
+    CHECK(o.x() == 10.5f);
+    CHECK(o.y() == -3.25f);
+    CHECK(o.vx() == 40.0f);
+    CHECK(o.vy() == 0.125f);
+
+    // Shapes without origins leave the field out.
+    ap::shape_list plain;
+    plain.append(circle(6, 1));
+    const auto without = ap::encode_delta_snapshot(fbb, 9, 41, 0, std::vector<std::uint8_t>{1}, &plain);
+    const auto plain_view = ap::decode_snapshot(verified(std::vector<std::uint8_t>(without.begin(), without.end())));
+    REQUIRE(plain_view);
+    CHECK(plain_view.value.table->shot_origins() == nullptr);
+
+    list.origins[0] = ap::ShotOrigin(5, 2, 41, 10.5f, std::numeric_limits<float>::quiet_NaN(), 40.0f, 0.125f);
+    const auto bad = ap::encode_delta_snapshot(fbb, 10, 41, 0, std::vector<std::uint8_t>{1}, &list);
+    const auto refused = ap::decode_snapshot(verified(std::vector<std::uint8_t>(bad.begin(), bad.end())));
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error == "the shot origin of body 5 is not finite");
+}

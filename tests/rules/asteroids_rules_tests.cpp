@@ -116,6 +116,36 @@ TEST_CASE("a bullet leaves at J/m_bullet and the ship recoils at exactly -J/m_sh
     CHECK(g.score(1).shots == 1);
 }
 
+TEST_CASE("make_shot gives the bullet and recoil the rules fire, and shot_of keeps the spawn", "[rules][asteroids]") {
+    game g(one_rock(0));
+    const uint32_t ship = g.join(1);
+    world::body* s = g.w.find(ship);
+    s->angle = 2.1f;
+    s->velocity = {3.5f, -1.25f};
+    const world::body before = *s;  // what a predicting client holds
+    const rules::shot predicted = rules::make_shot(before, 1, g.r.params());
+    g.r.before_step(g.w, {{world::body_id{ship}, {0, 0, rules::button_fire}}});
+    REQUIRE(g.w.bodies().size() == 2);
+    const world::body& bullet = g.w.bodies()[1];
+    // Bit for bit: the same code from the same state.
+    CHECK(bullet.position == predicted.bullet.position);
+    CHECK(bullet.velocity == predicted.bullet.velocity);
+    world::body recoiled = before;
+    recoiled.apply_impulse(predicted.recoil);
+    CHECK(g.w.find(ship)->velocity == recoiled.velocity);
+    const rules::shot_record* record = g.r.shot_of(bullet.id);
+    REQUIRE(record != nullptr);
+    CHECK(record->shooter == 1);
+    CHECK(record->position == bullet.position);
+    CHECK(record->velocity == bullet.velocity);
+    CHECK(g.r.shot_of(ship) == nullptr);
+    // may_fire: the cooldown's tick itself may fire; the cap counts live bullets.
+    const rules::asteroids_params& p = g.r.params();
+    CHECK(rules::may_fire(10, 10, 0, p));
+    CHECK_FALSE(rules::may_fire(9, 10, 0, p));
+    CHECK_FALSE(rules::may_fire(10, 10, p.max_bullets_per_ship, p));
+}
+
 TEST_CASE("fire keeps a cooldown, a lifetime and a cap on live bullets", "[rules][asteroids]") {
     game g(one_rock(0));
     const uint32_t ship = g.join(1);

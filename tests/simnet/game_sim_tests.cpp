@@ -26,6 +26,31 @@ conditions lossy(bool datagrams) {
     return c;
 }
 
+// Ten hunter bots on `kind` links, delta snapshots or not.
+sim_options hunters(link_kind kind, bool delta, std::uint64_t seed) {
+    sim_options o;
+    o.kind = kind;
+    o.clients = 10;
+    o.delta_snapshots = delta;
+    o.behavior = bots::behavior_choice::hunter;
+    o.seed = seed;
+    return o;
+}
+
+// The asteroids preset played by the Asteroids rules, for ten players.
+match::match_config asteroids_match(float view_radius) {
+    match::match_config config;
+    config.preset = "asteroids";
+    config.max_players = 10;
+    config.view_radius = view_radius;
+    return config;
+}
+world::world_config asteroids_rules_world() {
+    world::world_config world = *world::preset_by_name("asteroids");
+    world.rules = world::game_rules::asteroids;
+    return world;
+}
+
 }  // namespace
 
 TEST_CASE("every client holds the server's scoreboard lines and hears each event once, over lossy links",
@@ -35,21 +60,11 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
     // Streams: BodyState clients of the whole world share one frame; datagrams: delta views.
     const float view_radius = datagrams ? 100.0f : 0.0f;
     INFO((datagrams ? "datagrams, delta snapshots" : "stream, shared BodyState snapshots"));
-    sim_options o;
-    o.kind = kind;
-    o.clients = 10;
+    sim_options o = hunters(kind, datagrams, 91);
     o.up = o.down = lossy(datagrams);
-    o.delta_snapshots = datagrams;
-    o.behavior = bots::behavior_choice::hunter;
-    o.seed = 91;
-    match::match_config config;
-    config.preset = "asteroids";
-    config.max_players = 10;
+    match::match_config config = asteroids_match(view_radius);
     config.max_inputs_per_second = 4u * config.tick_rate;  // a lossy stream's bursts (match_sim_tests.cpp)
-    config.view_radius = view_radius;
-    world::world_config world = *world::preset_by_name("asteroids");
-    world.rules = world::game_rules::asteroids;
-    match_sim sim(config, world, o);
+    match_sim sim(config, asteroids_rules_world(), o);
 
     // The server's scoreboard after every tick, to compare with what each client holds.
     std::map<uint32_t, std::vector<rules::score_line>> boards;
@@ -106,5 +121,41 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
         CHECK(c.result() == result);
         CHECK(c.outcome().final_scoreboard);
         REQUIRE(c.outcome().scoreboard.size() == result.scoreboard.size());
+    }
+}
+
+TEST_CASE("own shots predicted by the clients spawn exactly as the server's, over a stream without loss",
+          "[simnet][match][game][shots]") {
+    // Streams at loopback latency, nothing lost: full BodyState snapshots of the whole world,
+    // and delta snapshots of a 100 m view.
+    const bool delta = GENERATE(false, true);
+    INFO((delta ? "delta snapshots, 100 m view" : "BodyState snapshots of the whole world"));
+    sim_options o = hunters(link_kind::stream, delta, 17);
+    o.up.latency = o.down.latency = ms / 10;
+    match_sim sim(asteroids_match(delta ? 100.0f : 0.0f), asteroids_rules_world(), o);
+    sim.run_ticks(1800);
+    for (std::size_t i = 0; i < sim.size(); ++i) sim.client(i).add_final_figures(sim.shared().metrics());
+    bots::fleet_metrics& m = sim.shared().metrics();
+    const bots::shot_counts& shots = m.own_shots;
+    const std::uint64_t fired = sim.match().counters().shots;
+    const std::uint64_t matched = shots.exact + shots.with_error;
+    const bots::summary error = m.own_shot_error_m.summarize();
+    INFO("own shots: " << shots.exact << " exact, " << shots.with_error << " with error (p99 " << error.p99 << " m), "
+                       << shots.unconfirmed << " unconfirmed, " << shots.unpredicted << " unpredicted, of the server's "
+                       << fired);
+    // Most of the server's shots were predicted: the others came when a bullet of a ship at
+    // its cap hit a rock between two snapshots (the client does not simulate rocks), which
+    // frees the gun on the server before the client learns of it. Measured: 90 % and 88 %.
+    REQUIRE(fired > 300);
+    CHECK(matched * 100 >= fired * 80);
+    CHECK(shots.unconfirmed * 100 <= fired);
+    if (!delta) {
+        // The server's floats arrive unchanged: every matched spawn is bit-exact (measured 417 of 417).
+        CHECK(shots.exact * 100 >= matched * 99);
+    } else {
+        // Quantised states (positions within 2 mm, velocities within 16 mm/s) cannot give the
+        // same bits; the spawn is then off by the quantisation (measured p99 2.7 mm, max 3.1 mm).
+        CHECK(error.p99 < 0.005);
+        CHECK(error.max < 0.01);
     }
 }

@@ -152,7 +152,9 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
     const auto at = std::lower_bound(view_.begin(), view_.end(), entity_id_,
                                      [](const protocol::BodyState& body, std::uint32_t id) { return body.id() < id; });
     const protocol::BodyState* own = (at != view_.end() && at->id() == entity_id_) ? &*at : nullptr;
-    const bots::predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own);
+    // The view and the shot origins: the own shots are predicted too (own_shots.hpp).
+    const bots::predictor::correction c =
+        predictor_->on_snapshot(snapshot.ack_sequence, own, view_, snapshot.shot_origins);
     if (c.problem == bots::predictor::ack_problem::went_back) return fail("Snapshot: ack_sequence went back");
     if (c.problem == bots::predictor::ack_problem::ahead)
         return fail("Snapshot: ack_sequence acknowledges an input never sent");

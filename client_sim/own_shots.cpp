@@ -1,0 +1,84 @@
+#include "client_sim/own_shots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "server/world/broadphase.hpp"
+
+namespace arena::bots {
+
+namespace {
+
+bool same_bits(const world::vec2& a, float x, float y) {
+    const float predicted[2] = {a.x(), a.y()};
+    const float server[2] = {x, y};
+    return std::memcmp(predicted, server, sizeof predicted) == 0;
+}
+
+bool in_view(std::span<const protocol::BodyState> view, std::uint32_t id) {
+    const auto at = std::lower_bound(view.begin(), view.end(), id,
+                                     [](const protocol::BodyState& b, std::uint32_t v) { return b.id() < v; });
+    return at != view.end() && at->id() == id;
+}
+
+}  // namespace
+
+own_shots::own_shots(const world::world_config& config, std::uint32_t player_id)
+    : enabled_(config.rules == world::game_rules::asteroids), player_id_(player_id) {}
+
+std::optional<predicted_shot> own_shots::fire(gun& g, std::uint32_t sequence, const world::player_input& input,
+                                              world::body& ship) const {
+    if (!enabled_ || (input.buttons & rules::button_fire) == 0) return std::nullopt;
+    // The server removes a bullet fired in tick T after the step into T + lifetime: the input
+    // of that tick no longer counts it.
+    std::erase_if(g.live, [&](std::uint32_t fired) { return sequence - fired >= params_.bullet_lifetime_ticks; });
+    if (!rules::may_fire(sequence, g.next_fire, static_cast<std::uint32_t>(g.live.size()), params_))
+        return std::nullopt;
+    const rules::shot s = rules::make_shot(ship, player_id_, params_);
+    ship.apply_impulse(s.recoil);
+    g.next_fire = sequence + params_.fire_cooldown_ticks;
+    g.live.push_back(sequence);
+    return predicted_shot{sequence, s.bullet.position, s.bullet.velocity};
+}
+
+void own_shots::forget_after(std::uint32_t sequence) {
+    std::erase_if(waiting_, [sequence](const predicted_shot& p) { return p.sequence > sequence; });
+}
+
+own_shots::gun own_shots::on_snapshot(std::uint32_t ack, std::span<const protocol::ShotOrigin> origins,
+                                      std::span<const protocol::BodyState> view, const world::world_config& config,
+                                      std::vector<float>& errors) {
+    gun g;
+    if (!enabled_) return g;
+    for (const protocol::ShotOrigin& o : origins) {
+        if (o.owner() != player_id_) continue;
+        const auto predicted = std::find_if(waiting_.begin(), waiting_.end(),
+                                            [&](const predicted_shot& p) { return p.sequence == o.input_sequence(); });
+        if (predicted == waiting_.end()) {
+            // Described again (it came back into view, or an acknowledgement is on its way).
+            if (last_confirmed_ && o.input_sequence() <= *last_confirmed_) continue;
+            ++counts_.unpredicted;
+        } else if (same_bits(predicted->position, o.x(), o.y()) && same_bits(predicted->velocity, o.vx(), o.vy())) {
+            ++counts_.exact;
+            waiting_.erase(predicted);
+        } else {
+            // Wrap-aware: a spawn across the edge from the prediction is near it, not a world away.
+            const world::vec2 d = world::displacement(predicted->position, {o.x(), o.y()}, config);
+            errors.push_back(std::sqrt(d.squaredNorm()));
+            ++counts_.with_error;
+            waiting_.erase(predicted);
+        }
+        confirmed_.push_back({o.body_id(), o.input_sequence()});
+        last_confirmed_ = std::max(last_confirmed_.value_or(0), o.input_sequence());
+    }
+    counts_.unconfirmed += static_cast<std::uint64_t>(
+        std::erase_if(waiting_, [ack](const predicted_shot& p) { return p.sequence <= ack; }));
+    // A confirmed bullet no longer in view is gone: it hit something, or its lifetime ended.
+    std::erase_if(confirmed_, [&](const confirmed& c) { return !in_view(view, c.body_id); });
+    if (last_confirmed_) g.next_fire = *last_confirmed_ + params_.fire_cooldown_ticks;
+    for (const confirmed& c : confirmed_) g.live.push_back(c.sequence);
+    return g;
+}
+
+}  // namespace arena::bots

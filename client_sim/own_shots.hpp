@@ -1,0 +1,90 @@
+#pragma once
+// The player's own shots (Asteroids), predicted as the ship is: when an input with the fire
+// button is stepped, the client decides with the rules' own code (server/rules/asteroids_
+// shot.hpp) whether the ship may fire, spawns the bullet and gives the ship its recoil. Each
+// predicted shot waits for the server's bullet from the same input (protocol ShotOrigin,
+// matched by input sequence) and is then replaced by it: exactly when the two spawns are bit
+// for bit equal, with an error (m) otherwise. A shot still unmatched once a snapshot
+// acknowledged its input never happened on the server (the server sends the origin in the
+// first snapshot that holds the bullet, and every snapshot acknowledging the input holds it
+// unless it is already gone): it is dropped, as unconfirmed.
+//
+// The gun's state (cooldown and live bullets) counts in input sequences, one input a tick,
+// as the server counts it in ticks. After each snapshot it is rebuilt from what the server
+// confirmed: the newest confirmed shot's cooldown, and the confirmed bullets still in view.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "protocol/arena_generated.h"
+#include "server/rules/asteroids_shot.hpp"
+#include "server/world/config.hpp"
+#include "server/world/input.hpp"
+
+namespace arena::bots {
+
+// A shot as the client predicted it, waiting for the server's.
+struct predicted_shot {
+    std::uint32_t sequence = 0;  // the input that fired it
+    world::vec2 position{0, 0};  // m, spawn
+    world::vec2 velocity{0, 0};  // m/s, spawn
+};
+
+// What the matching found (each shot counted once).
+struct shot_counts {
+    std::uint64_t exact = 0;        // the server's spawn equals the prediction bit for bit
+    std::uint64_t with_error = 0;   // matched, but the spawns differ
+    std::uint64_t unconfirmed = 0;  // predicted, the server never fired it
+    std::uint64_t unpredicted = 0;  // the server's, with no prediction from its input
+};
+
+class own_shots {
+public:
+    // Predicts nothing unless `config` plays Asteroids.
+    own_shots(const world::world_config& config, std::uint32_t player_id);
+
+    // The gun: the cooldown's end and the live bullets' firing inputs.
+    struct gun {
+        std::uint32_t next_fire = 0;
+        std::vector<std::uint32_t> live;
+    };
+
+    // Input `sequence` is being stepped on `ship` from `g`: when the rules would fire, gives the
+    // ship its recoil, updates `g` and returns the shot.
+    std::optional<predicted_shot> fire(gun& g, std::uint32_t sequence, const world::player_input& input,
+                                       world::body& ship) const;
+    // A shot predicted for the input just sent, or on a replay of an unacknowledged one.
+    void predicted(const predicted_shot& shot) { waiting_.push_back(shot); }
+    // Before a replay: the unacknowledged inputs' shots are predicted again.
+    void forget_after(std::uint32_t sequence);
+
+    // A snapshot acknowledging input `ack`: this player's `origins` are matched; waiting shots
+    // of inputs up to `ack` without one are dropped; `view` (by increasing id) tells which
+    // confirmed bullets are still there. Returns the gun after input `ack`. The spawn errors
+    // (m) of shots matched with one go to `errors`.
+    gun on_snapshot(std::uint32_t ack, std::span<const protocol::ShotOrigin> origins,
+                    std::span<const protocol::BodyState> view, const world::world_config& config,
+                    std::vector<float>& errors);
+
+    [[nodiscard]] bool enabled() const { return enabled_; }
+    [[nodiscard]] const shot_counts& counts() const { return counts_; }
+    // Predicted shots the server has not confirmed yet, oldest first.
+    [[nodiscard]] std::span<const predicted_shot> waiting() const { return waiting_; }
+    [[nodiscard]] const rules::asteroids_params& params() const { return params_; }
+
+private:
+    struct confirmed {
+        std::uint32_t body_id = 0;
+        std::uint32_t sequence = 0;
+    };
+    bool enabled_;
+    std::uint32_t player_id_;
+    rules::asteroids_params params_;  // the server's: make_rules() plays Asteroids with the defaults
+    std::vector<predicted_shot> waiting_;
+    std::vector<confirmed> confirmed_;             // the server's bullets of ours, seen alive in the last view
+    std::optional<std::uint32_t> last_confirmed_;  // the newest confirmed shot's input
+    shot_counts counts_;
+};
+
+}  // namespace arena::bots
