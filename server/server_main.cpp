@@ -216,6 +216,7 @@ int main(int argc, char** argv) {
         if (http_port >= 0) {
             web.port = static_cast<uint16_t>(http_port);
             web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
+            web.recording = record;
             http.emplace(io, server, web,
                          ops::http_handlers{[&ops] { return ops.metrics_text(); },
                                             [&server] {
