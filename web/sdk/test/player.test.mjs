@@ -5,6 +5,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { loadCore, sdk, sourceDir } from './helpers.mjs';
+import { withChangedHash } from './recording_edits.mjs';
 
 const golden = (name) => new Uint8Array(fs.readFileSync(path.join(sourceDir, 'tests/data', name)));
 const state = (p) => ({ tick: p.tick, hash: p.hash, bodies: JSON.stringify(p.bodies()) });
@@ -63,34 +64,6 @@ test('seeking forward and back gives the state and hash that stepping from the s
     seeking.close();
   }
 });
-
-// FNV-1a 32, the record check (server/replay/README.md).
-function fnv1a(bytes) {
-  let h = 0x811c9dc5;
-  for (const b of bytes) h = Math.imul(h ^ b, 0x01000193) >>> 0;
-  return h;
-}
-
-// The recording with the first recorded Hash after the start changed (its checksum made right
-// again, so that the reader lets it through): the tick and the hash it held.
-function withChangedHash(bytes, hashes) {
-  const tickOf = new Map(hashes.slice(1).map((h) => [h.hash, h.tick]));
-  const out = bytes.slice();
-  const d = new DataView(out.buffer);
-  for (let at = 0; at + 4 <= out.length; ) {
-    const length = d.getUint32(at, true);
-    const body = out.subarray(at + 4, at + 4 + length);
-    for (let i = 0; length < 64 && i + 8 <= body.length; ++i) {
-      const hex = [...body.subarray(i, i + 8)].reverse().map((b) => b.toString(16).padStart(2, '0')).join('');
-      if (!tickOf.has(hex)) continue;
-      body[i] ^= 0x01;
-      d.setUint32(at + 4 + length, fnv1a(body), true);
-      return { bytes: out, tick: tickOf.get(hex), recorded: hex };
-    }
-    at += 4 + length + 4;
-  }
-  throw new Error('no Hash record found');
-}
 
 test('a changed recorded hash: the player stops at its tick and names both hashes', async () => {
   const core = await loadCore();
