@@ -11,35 +11,18 @@ import { execFileSync, spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
-import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withChangedHash } from '../../sdk/test/recording_edits.mjs';
+import { need, puppeteer, sleep, until } from './browser.mjs';
 
-const need = (name) => {
-  const v = process.env[name];
-  if (!v) throw new Error(`${name} is not set (run this test through ctest)`);
-  return v;
-};
 const server = need('ARENA_SERVER');
 const replayBinary = need('ARENA_REPLAY');
 const chromium = need('ARENA_CHROMIUM');
 const golden = join(need('ARENA_SOURCE_DIR'), 'tests/data/golden_asteroids.arpl');
-const require = createRequire(join(need('NODE_PATH'), 'page-test.cjs'));
-const puppeteer = require('puppeteer-core');
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, check, timeoutMs = 20000) {
-  const end = Date.now() + timeoutMs;
-  for (;;) {
-    const v = await check();
-    if (v) return v;
-    if (Date.now() > end) throw new Error(`timed out waiting for ${what}`);
-    await sleep(50);
-  }
-}
+const wait = (what, check, timeoutMs = 20000) => until(what, check, timeoutMs);
 
 const dir = mkdtempSync(join(tmpdir(), 'arena-replay-page-'));
 const servers = [];
@@ -55,7 +38,7 @@ async function startServer(extra) {
   let err = '';
   proc.stdout.on('data', (d) => (out += d));
   proc.stderr.on('data', (d) => (err += d));
-  const port = await until('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1]).catch((e) => {
+  const port = await wait('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1]).catch((e) => {
     throw new Error(`${e.message}\n${out}\n${err}`);
   });
   return `http://127.0.0.1:${port}/`;
@@ -89,7 +72,7 @@ async function openReplay(url) {
   page.on('pageerror', (e) => problems.push(e.message));
   page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
   await page.goto(url);
-  await until('the recording loaded', () => page.evaluate(() => window.arenaReplay?.loaded || window.arenaReplay?.error)).catch((e) => {
+  await wait('the recording loaded', () => page.evaluate(() => window.arenaReplay?.loaded || window.arenaReplay?.error)).catch((e) => {
     throw new Error(`${e.message}: ${problems.join('; ')}`);
   });
   return { page, problems };
@@ -120,10 +103,10 @@ test('the replay page plays the golden recording to its final hash, and a scrub 
 
   await page.select('#speed', '8');
   await page.click('#play');
-  await until('a tick while playing', async () => (await figures(page)).tick > start.startTick);
+  await wait('a tick while playing', async () => (await figures(page)).tick > start.startTick);
   const midway = await figures(page);
   assert.ok(midway.playing || midway.tick === midway.endTick, 'it plays');
-  const ended = await until('the end of the recording', async () => {
+  const ended = await wait('the end of the recording', async () => {
     const f = await figures(page);
     return f.tick === f.endTick || f.error ? f : null;
   }, 60000);
@@ -161,7 +144,7 @@ test('the replay page plays the server\'s own recording from /recording while it
 
   const url = await startServer(['--record', join(dir, 'live.arpl'), '--tick-rate', '60', '--hash-interval', '10']);
   // The recorder flushes once a second: wait for a few seconds of ticks.
-  await until('a second of recorded ticks', async () => (await (await fetch(`${url}recording`)).arrayBuffer()).byteLength > 2000);
+  await wait('a second of recorded ticks', async () => (await (await fetch(`${url}recording`)).arrayBuffer()).byteLength > 2000);
   await sleep(1500);
   const { page, problems } = await openReplay(`${url}replay?src=/recording`);
   const opened = await figures(page);
@@ -194,13 +177,13 @@ test('a local file with a changed recorded hash stops at that tick, both hashes 
   const problems = [];
   page.on('pageerror', (e) => problems.push(e.message));
   await page.goto(`${url}replay`);
-  await until('the page ready', () => page.evaluate(() => window.arenaReplay !== undefined));
+  await wait('the page ready', () => page.evaluate(() => window.arenaReplay !== undefined));
   await (await page.$('#file')).uploadFile(file);
-  await until('the file loaded', () => page.evaluate(() => window.arenaReplay.loaded));
+  await wait('the file loaded', () => page.evaluate(() => window.arenaReplay.loaded));
   assert.equal((await figures(page)).source, 'changed.arpl');
   await page.select('#speed', '8');
   await page.click('#play');
-  const stopped = await until('the mismatch', async () => {
+  const stopped = await wait('the mismatch', async () => {
     const f = await figures(page);
     return f.error ? f : null;
   }, 30000);
