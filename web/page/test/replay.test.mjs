@@ -16,7 +16,7 @@ import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withChangedHash } from '../../sdk/test/recording_edits.mjs';
-import { need, puppeteer, sleep, until } from './browser.mjs';
+import { need, puppeteer, until } from './browser.mjs';
 
 const server = need('ARENA_SERVER');
 const replayBinary = need('ARENA_REPLAY');
@@ -143,14 +143,22 @@ test('the replay page plays the server\'s own recording from /recording while it
   assert.match(await missing.text(), /--record/);
 
   const url = await startServer(['--record', join(dir, 'live.arpl'), '--tick-rate', '60', '--hash-interval', '10']);
-  // The recorder flushes once a second: wait for a few seconds of ticks.
-  await wait('a second of recorded ticks', async () => (await (await fetch(`${url}recording`)).arrayBuffer()).byteLength > 2000);
-  await sleep(1500);
+  // The recorder flushes once a second (every 60 ticks here): the file grows twice, so it holds
+  // at least one whole second of ticks after its header.
+  const size = async () => (await (await fetch(`${url}recording`)).arrayBuffer()).byteLength;
+  let last = await size();
+  for (let grown = 0; grown < 2; ++grown) {
+    const before = last;
+    last = await wait('the recording to grow', async () => {
+      const now = await size();
+      return now > before ? now : 0;
+    });
+  }
   const { page, problems } = await openReplay(`${url}replay?src=/recording`);
   const opened = await figures(page);
   assert.equal(opened.error, '');
   assert.match(opened.cutShort, /\S/, 'a recording still being written has no End yet');
-  assert.ok(opened.endTick > opened.startTick + 60, `ticks ${opened.startTick}..${opened.endTick}`);
+  assert.ok(opened.endTick >= opened.startTick + 60, `ticks ${opened.startTick}..${opened.endTick}`);
   await scrubTo(page, opened.endTick);
   const played = await figures(page);
   console.log(`the server's recording so far, ${played.endTick - played.startTick} ticks: ${played.text}`);
