@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
     int http_port = -1;  // off
     app.add_option("--http-port", http_port,
                    "also serve HTTP on this port (default: off; 0 picks a free one): the game over WebSocket at "
-                   "/ws, /metrics, /healthz, and the web page's files at /")
+                   "/ws, /metrics, /healthz, the web page's files at / (the replay page at /replay), and "
+                   "the --record file at /recording")
         ->check(CLI::Range(0, 65535));
     net::web_options web;
     std::string web_root;
@@ -216,6 +217,7 @@ int main(int argc, char** argv) {
         if (http_port >= 0) {
             web.port = static_cast<uint16_t>(http_port);
             web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
+            web.recording = record;
             http.emplace(io, server, web,
                          ops::http_handlers{[&ops] { return ops.metrics_text(); },
                                             [&server] {

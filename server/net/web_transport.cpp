@@ -244,8 +244,18 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
             reply = text_response(405, "text/plain; charset=utf-8", "only GET and HEAD\n");
         } else {
             static_refusal why;
-            const std::optional<static_file> file = files_.resolve(path, &why);
-            if (!file) {
+            std::optional<static_file> file;
+            // The session's recording as far as the recorder has flushed it (once a second):
+            // a replay plays it up to its last complete tick. Written like any static file.
+            const bool recording = path == "/recording";
+            if (recording && !options_.recording.empty())
+                file = static_file{options_.recording, "application/octet-stream"};
+            else if (!recording)
+                file = files_.resolve(path, &why);
+            if (recording && !file) {
+                reply = text_response(404, "text/plain; charset=utf-8",
+                                      "not found: the server records no session (--record)\n");
+            } else if (!file) {
                 if (why.hostile)
                     log_line("http: %s: refused path '%.*s': %s", peer.c_str(),
                              static_cast<int>(std::min<size_t>(path.size(), 200)), path.data(), why.reason.c_str());

@@ -31,6 +31,7 @@ struct http_conn;  // web_transport.cpp
 struct web_options {
     uint16_t port = 0;                          // 0: any free port
     std::filesystem::path web_root;             // empty: no files are served
+    std::filesystem::path recording;            // --record's file, served at /recording; empty: a 404
     std::vector<std::string> allowed_origins;   // empty: any Origin (or none) may open /ws
     size_t max_request_bytes = 8 * 1024;        // request line + headers; more gets 431
     uint32_t max_http_connections = 64;         // not upgraded (heads being sent, answers being written)

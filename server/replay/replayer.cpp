@@ -24,42 +24,72 @@ replay_report replayer::run(const replay_options& options) {
     const auto finish = [&](replay_report& rep) -> replay_report {
         rep.final_tick = world_.tick();
         rep.final_hash = rules::state_hash(world_, *rules_);
+        if (rep.mismatch) failed_hash_ = rep.mismatch;
         return rep;
     };
-    // Each recorded hash is compared with the world now; false on a mismatch.
+    const auto file_problem = [&](replay_report& rep, std::string error) -> replay_report {
+        failed_file_ = error;
+        rep.error = std::move(error);
+        return finish(rep);
+    };
+    // Each recorded hash is compared with the world now; false on a mismatch. The start hash
+    // is the world's alone (make_header); the rules' state joins it from the first step.
     const auto check = [&](uint32_t tick, uint64_t expected) {
         ++report.hashes_checked;
-        // The start hash is the world's alone (make_header); the rules' state joins it from the first step.
-        const uint64_t actual = tick == report.start_tick && report.ticks_replayed == 0
-                                    ? world_.hash()
-                                    : rules::state_hash(world_, *rules_);
+        const uint64_t actual =
+            world_.tick() == file_header().start_tick ? world_.hash() : rules::state_hash(world_, *rules_);
         if (actual != expected) report.mismatch = hash_mismatch{tick, expected, actual};
         return actual == expected;
     };
 
+    if (failed_hash_ || !failed_file_.empty()) {
+        report.mismatch = failed_hash_;
+        report.error = failed_file_;
+        return finish(report);
+    }
     if (options.until && *options.until < report.start_tick) {
-        report.error = "tick " + std::to_string(*options.until) + " is before the recording's start tick " +
+        report.error = "tick " + std::to_string(*options.until) +
+                       (start_checked_ ? " is before the replay's tick " : " is before the recording's start tick ") +
                        std::to_string(report.start_tick);
         return finish(report);
     }
-    if (!check(report.start_tick, file_header().start_hash)) return finish(report);
-    if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
+    if (!start_checked_) {
+        start_checked_ = true;
+        if (!check(report.start_tick, file_header().start_hash)) return finish(report);
+        if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
+    }
+    if (ended_) {
+        if (options.until && *options.until > world_.tick()) {
+            report.error = "tick " + std::to_string(*options.until) + " is after the recording's end at tick " +
+                           std::to_string(world_.tick());
+            return finish(report);
+        }
+        report.complete = true;
+        return finish(report);
+    }
 
     const auto reached_until = [&] {
         return options.until && world_.tick() == *options.until;
     };
     for (;;) {
-        auto next = reader_.next();
+        protocol::result<entry> next;
+        if (pending_) {
+            next = protocol::result<entry>::success(std::move(*pending_));
+            pending_.reset();
+        } else {
+            next = reader_.next();
+        }
         // Past `until`, what is asked for is in hand: a problem further on (a recording cut
         // short by a crash, the usual reason to look at a state) does not take it away.
         if (!next && reached_until()) break;
-        if (!next) {
-            report.error = next.error;
-            return finish(report);
-        }
+        if (!next) return file_problem(report, next.error);
         if (auto* t = std::get_if<match::tick_record>(&next.value)) {
-            // `until` stops before the next step, once that tick's Hash record (if any) is checked.
-            if (reached_until()) break;
+            // `until` stops before the next step, once that tick's Hash record (if any) is
+            // checked; the tick read is kept for the next run.
+            if (reached_until()) {
+                pending_ = std::move(*t);
+                break;
+            }
             match::apply_tick(world_, *rules_, *t);
             ++report.ticks_replayed;
             if (options.on_tick) options.on_tick(world_.tick(), rules::state_hash(world_, *rules_));
@@ -68,6 +98,7 @@ replay_report replayer::run(const replay_options& options) {
         } else {
             const end_marker& e = std::get<end_marker>(next.value);
             if (!check(e.tick, e.hash)) return finish(report);
+            ended_ = true;
             if (options.until && *options.until > e.tick) {
                 report.error = "tick " + std::to_string(*options.until) + " is after the recording's end at tick " +
                                std::to_string(e.tick);

@@ -2,7 +2,8 @@
 // Re-simulates a recorded session offline: rebuilds the world from the header (config JSON and
 // seed), applies every recorded tick with apply_tick (the server's own function) and compares
 // every recorded hash. Stops at the first mismatch, the first file problem, the End record or
-// the requested tick.
+// the requested tick; a run stopped at the requested tick resumes from there on the next run
+// (a player steps a recording a few ticks at a time).
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -47,6 +48,9 @@ public:
     // whether the recorded server had done the same).
     static protocol::result<std::unique_ptr<replayer>> open(const std::string& path);
 
+    // Replays from the world's tick now: from the start on the first call, from where the last
+    // run stopped at its `until` on a later one (a report then counts this run alone). After a
+    // mismatch or a file problem a later run steps no further and reports that failure again.
     replay_report run(const replay_options& options = {});
 
     const header& file_header() const { return reader_.file_header(); }
@@ -59,6 +63,11 @@ private:
     reader reader_;
     world::world world_;
     std::unique_ptr<rules::rules> rules_;
+    bool start_checked_ = false;                 // the header's start hash, by the first run
+    std::optional<match::tick_record> pending_;  // read by a run that stopped at its `until`
+    bool ended_ = false;                         // the End record is read and checked
+    std::optional<hash_mismatch> failed_hash_;   // the mismatch that stopped a run
+    std::string failed_file_;                    // the file problem that stopped a run
 };
 
 }  // namespace arena::replay

@@ -272,6 +272,31 @@ TEST_CASE("the HTTP port serves files under --web-root only, with their content 
     std::filesystem::remove(outside);
 }
 
+TEST_CASE("/recording serves the --record file as far as it is written, and is a 404 without one",
+          "[net][ws][http][replay]") {
+    const auto recording =
+        std::filesystem::temp_directory_path() / ("arena-recording-" + std::to_string(::getpid()) + ".arpl");
+    {
+        http_server bare({});
+        const std::string answer = raw_http(bare.http_port, "GET /recording HTTP/1.1\r\nHost: x\r\n\r\n");
+        CHECK(answer.find("HTTP/1.1 404") == 0);
+        CHECK(answer.find("--record") != std::string::npos);
+    }
+    http_server s({"--record", recording.string()});
+    // The header is written when the recorder opens; the answer is the file's bytes then.
+    const std::string answer = raw_http(s.http_port, "GET /recording HTTP/1.1\r\nHost: x\r\n\r\n");
+    CHECK(answer.find("HTTP/1.1 200") == 0);
+    CHECK(answer.find("Content-Type: application/octet-stream") != std::string::npos);
+    const size_t body = answer.find("\r\n\r\n");
+    REQUIRE(body != std::string::npos);
+    // Every recording starts with a length, a root offset and the identifier ARPL.
+    CHECK(answer.substr(body + 4 + 8, 4) == "ARPL");
+    const std::string head = raw_http(s.http_port, "HEAD /recording HTTP/1.1\r\nHost: x\r\n\r\n");
+    CHECK(head.find("HTTP/1.1 200") == 0);
+    CHECK(head.find("ARPL") == std::string::npos);
+    std::filesystem::remove(recording);
+}
+
 TEST_CASE("at shutdown a WebSocket client reads its Bye, and the server waits for it", "[net][ws]") {
     http_server s({});
     ws_client c(s.http_port);

@@ -99,3 +99,43 @@ TEST_CASE("the golden Asteroids match replays to the live scoreboard with every 
         CHECK(lines[i].hits == live[i].hits);
     }
 }
+
+TEST_CASE("a replay stopped at its `until` goes on from there: the same hashes as one run", "[replay][golden]") {
+    replay_report whole;
+    const auto expected = replay_hashes(testing::golden_path(), whole);
+
+    auto opened = replayer::open(testing::golden_path());
+    REQUIRE(opened.ok());
+    replayer& rp = *opened.value;
+    std::vector<std::pair<uint32_t, uint64_t>> hashes;
+    replay_options options;
+    options.on_tick = [&](uint32_t tick, uint64_t hash) {
+        hashes.emplace_back(tick, hash);
+    };
+    uint32_t checked = 0;
+    uint32_t stepped = 0;
+    // Stops on and off a Hash record's tick, twice at the same tick, then to the end.
+    for (const uint32_t until : {0u, 1u, 60u, 60u, 61u, 299u, 600u}) {
+        options.until = until;
+        const replay_report part = rp.run(options);
+        INFO("until " << until << ": " << part.error);
+        REQUIRE(part.complete);
+        REQUIRE_FALSE(part.mismatch.has_value());
+        CHECK(part.final_tick == until);
+        checked += part.hashes_checked;
+        stepped += part.ticks_replayed;
+    }
+    CHECK(hashes == expected);
+    CHECK(checked == whole.hashes_checked);
+    CHECK(stepped == whole.ticks_replayed);
+
+    options.until = 30;
+    CHECK(rp.run(options).error == "tick 30 is before the replay's tick 600");
+    options.until = 601;
+    CHECK(rp.run(options).error == "tick 601 is after the recording's end at tick 600");
+    options.until.reset();
+    const replay_report after_end = rp.run(options);
+    CHECK(after_end.complete);
+    CHECK(after_end.ticks_replayed == 0);
+    CHECK(after_end.final_hash == golden_final_hash);
+}

@@ -8,34 +8,15 @@
 import { spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
+import { need, puppeteer, sleep, until } from './browser.mjs';
 
-const need = (name) => {
-  const v = process.env[name];
-  if (!v) throw new Error(`${name} is not set (run this test through ctest)`);
-  return v;
-};
 const server = need('ARENA_SERVER');
 const chromium = need('ARENA_CHROMIUM');
 const webDir = need('ARENA_WEB_DIR');
-// ES modules ignore NODE_PATH: load the CommonJS build of puppeteer-core from there.
-const require = createRequire(join(need('NODE_PATH'), 'page-test.cjs'));
-const puppeteer = require('puppeteer-core');
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, check, timeoutMs = 8000) {
-  const end = Date.now() + timeoutMs;
-  for (;;) {
-    const v = await check();
-    if (v) return v;
-    if (Date.now() > end) throw new Error(`timed out waiting for ${what}`);
-    await sleep(50);
-  }
-}
 
 const dir = mkdtempSync(join(tmpdir(), 'arena-page-'));
 const statsFile = join(dir, 'stats.json');

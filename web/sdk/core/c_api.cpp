@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "server/match/shape_wire.hpp"
 #include "server/replay/replayer.hpp"
+#include "web/sdk/core/replay_player.hpp"
 #include "web/sdk/core/session.hpp"
 
 #ifdef __EMSCRIPTEN__
@@ -72,7 +74,25 @@ struct replay {
     std::string final_hash;
 };
 
-std::string open_error;  // why the last arena_replay_open failed
+struct player {
+    std::unique_ptr<arena::sdk::replay_player> playing;
+    std::vector<arena::protocol::BodyState> bodies;
+    std::vector<sdk_shape> shapes;
+    std::string text;  // the last hash or error asked for
+};
+
+std::string open_error;  // why the last arena_replay_open or arena_player_open failed
+
+std::string hex(std::uint64_t value) {
+    char text[17];
+    std::snprintf(text, sizeof(text), "%016" PRIx64, value);
+    return text;
+}
+
+std::string mismatch_text(const arena::replay::hash_mismatch& m) {
+    return "tick " + std::to_string(m.tick) + ": hash mismatch: expected " + hex(m.expected) + ", actual " +
+           hex(m.actual);
+}
 
 std::uint32_t out_size(std::span<const std::uint8_t> frame) {
     return static_cast<std::uint32_t>(frame.size());
@@ -241,13 +261,7 @@ ARENA_API int arena_replay_run(replay* r, double until) {
     };
     r->report = r->replayer->run(options);
     r->error = r->report.error;
-    if (r->report.mismatch) {
-        char text[120];
-        std::snprintf(text, sizeof(text),
-                      "tick %" PRIu32 ": hash mismatch: expected %016" PRIx64 ", actual %016" PRIx64,
-                      r->report.mismatch->tick, r->report.mismatch->expected, r->report.mismatch->actual);
-        r->error = text;
-    }
+    if (r->report.mismatch) r->error = mismatch_text(*r->report.mismatch);
     return r->report.complete && !r->report.mismatch ? 1 : 0;
 }
 // What arena-replay --dump-hashes prints: "tick,hash" then one line per tick.
@@ -265,9 +279,7 @@ ARENA_API std::uint32_t arena_replay_hashes_checked(const replay* r) {
 }
 // The final state hash (the world's and the rules'), 16 hex digits, as arena-replay's final_hash.
 ARENA_API const char* arena_replay_final_hash(replay* r) {
-    char text[17];
-    std::snprintf(text, sizeof(text), "%016" PRIx64, r->report.final_hash);
-    r->final_hash = text;
+    r->final_hash = hex(r->report.final_hash);
     return r->final_hash.c_str();
 }
 // The replayed world's bodies now, as BodyStates (32 bytes each), by id.
@@ -280,4 +292,100 @@ ARENA_API const arena::protocol::BodyState* arena_replay_bodies(replay* r) {
 }
 ARENA_API std::uint32_t arena_replay_body_count(const replay* r) {
     return static_cast<std::uint32_t>(r->bodies.size());
+}
+
+// --- player: a recording stepped, scrubbed and drawn (replay_player.hpp) --------------------
+
+// Opens a recording (a path in the module's file system) at its start tick; null when it
+// cannot be read or its start hash does not match: arena_replay_open_error says why.
+ARENA_API player* arena_player_open(const char* path) {
+    auto opened = arena::sdk::replay_player::open(path);
+    if (!opened) {
+        open_error = opened.error;
+        return nullptr;
+    }
+    auto* p = new player;
+    p->playing = std::move(opened.value);
+    return p;
+}
+ARENA_API void arena_player_free(player* p) {
+    delete p;
+}
+// Both return 1 while every hash compared so far matched, 0 once one did not or the file has
+// a problem (arena_player_error).
+ARENA_API int arena_player_step(player* p, std::uint32_t ticks) {
+    return p->playing->step(ticks) ? 1 : 0;
+}
+ARENA_API int arena_player_seek(player* p, std::uint32_t tick) {
+    return p->playing->seek(tick) ? 1 : 0;
+}
+ARENA_API std::uint32_t arena_player_tick(const player* p) {
+    return p->playing->tick();
+}
+ARENA_API std::uint32_t arena_player_start_tick(const player* p) {
+    return p->playing->start_tick();
+}
+ARENA_API std::uint32_t arena_player_end_tick(const player* p) {
+    return p->playing->end_tick();
+}
+ARENA_API std::uint32_t arena_player_tick_rate(const player* p) {
+    return p->playing->file_header().tick_rate;
+}
+ARENA_API std::uint32_t arena_player_hashes_checked(const player* p) {
+    return p->playing->hashes_checked();
+}
+ARENA_API std::uint32_t arena_player_hashes_total(const player* p) {
+    return p->playing->hashes_total();
+}
+// The hash computed at the current tick, 16 hex digits.
+ARENA_API const char* arena_player_hash(player* p) {
+    p->text = hex(p->playing->hash());
+    return p->text.c_str();
+}
+// The recording's hash for the current tick; "" when it holds none for that tick.
+ARENA_API const char* arena_player_recorded_hash(player* p) {
+    const auto recorded = p->playing->recorded_hash();
+    p->text = recorded ? hex(*recorded) : "";
+    return p->text.c_str();
+}
+// "" while all is well; else the first mismatch ("tick T: hash mismatch: expected E, actual A")
+// or the file's problem.
+ARENA_API const char* arena_player_error(player* p) {
+    const auto& m = p->playing->mismatch();
+    p->text = m ? mismatch_text(*m) : p->playing->error();
+    return p->text.c_str();
+}
+// "" for a complete recording; else the problem that ends it early (no End record: the server
+// was still recording, or crashed), after which nothing is played.
+ARENA_API const char* arena_player_cut_short(const player* p) {
+    return p->playing->cut_short().c_str();
+}
+// The world's bounds, as arena_world_wraps/width/height give them for a session.
+ARENA_API int arena_player_world_wraps(const player* p) {
+    return p->playing->world().config().boundary == arena::world::boundary::wrap ? 1 : 0;
+}
+ARENA_API double arena_player_world_width(const player* p) {
+    return static_cast<double>(p->playing->world().config().size.x());
+}
+ARENA_API double arena_player_world_height(const player* p) {
+    return static_cast<double>(p->playing->world().config().size.y());
+}
+// Every body now (static ones too), as BodyStates (32 bytes each) by id, and the shape of each
+// (arena_player_shapes: the same count, the same order); both valid until the next call.
+ARENA_API const arena::protocol::BodyState* arena_player_bodies(player* p) {
+    p->bodies.clear();
+    p->shapes.clear();
+    const arena::world::world& w = p->playing->world();
+    for (const arena::world::body& b : w.bodies()) {
+        p->bodies.emplace_back(b.id, b.owner, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y(), b.angle,
+                               b.angular_velocity);
+        p->shapes.push_back(to_sdk(arena::match::describe(w, b, p->playing->game_rules().kind_of(b.id))));
+    }
+    return p->bodies.data();
+}
+ARENA_API std::uint32_t arena_player_body_count(const player* p) {
+    return static_cast<std::uint32_t>(p->bodies.size());
+}
+ARENA_API const sdk_shape* arena_player_shapes(const player* p) {
+    return p->shapes.data();
 }

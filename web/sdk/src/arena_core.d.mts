@@ -58,6 +58,27 @@ export interface CoreModule {
   _arena_replay_final_hash(replay: number): number;
   _arena_replay_bodies(replay: number): number;
   _arena_replay_body_count(replay: number): number;
+
+  _arena_player_open(path: number): number;
+  _arena_player_free(player: number): void;
+  _arena_player_step(player: number, ticks: number): number;
+  _arena_player_seek(player: number, tick: number): number;
+  _arena_player_tick(player: number): number;
+  _arena_player_start_tick(player: number): number;
+  _arena_player_end_tick(player: number): number;
+  _arena_player_tick_rate(player: number): number;
+  _arena_player_hashes_checked(player: number): number;
+  _arena_player_hashes_total(player: number): number;
+  _arena_player_hash(player: number): number;
+  _arena_player_recorded_hash(player: number): number;
+  _arena_player_error(player: number): number;
+  _arena_player_cut_short(player: number): number;
+  _arena_player_world_wraps(player: number): number;
+  _arena_player_world_width(player: number): number;
+  _arena_player_world_height(player: number): number;
+  _arena_player_bodies(player: number): number;
+  _arena_player_body_count(player: number): number;
+  _arena_player_shapes(player: number): number;
 }
 
 export default function createArenaCore(options?: CoreModuleOptions): Promise<CoreModule>;

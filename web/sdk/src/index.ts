@@ -3,6 +3,8 @@ export { connect, ArenaClient } from './client.js';
 export type { ConnectOptions, SocketLike, Welcome, SnapshotEvent, DrawBody, RenderState } from './client.js';
 export { Core, Payload } from './core.js';
 export type { BodyState, Shape, StaticBody, ReplayResult, CoreModuleOptions } from './core.js';
+export { ReplayPlayer } from './player.js';
+export type { PlayerBody } from './player.js';
 export { CoreSession } from './session.js';
 export type { PredictedBody } from './session.js';
 export { Interpolator, shortest, wrapAngle } from './interpolation.js';
