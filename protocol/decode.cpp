@@ -145,8 +145,8 @@ result<bye_msg> decode_bye(const Message& message) {
 result<snapshot_view> decode_snapshot(const Message& message) {
     const auto* t = message.payload_as<Snapshot>();
     if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
-    snapshot_view view{t->tick(),   t->ack_sequence(),   {}, t->baseline_tick(), {}, false,
-                       t->shapes(), t->shape_vertices(), t};
+    snapshot_view view{
+        t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false, t->shapes(), t->shape_vertices(), t, {}};
     if (const auto* delta = t->delta(); delta != nullptr) {
         view.is_delta = true;
         view.delta = {delta->data(), delta->size()};
