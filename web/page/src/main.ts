@@ -128,9 +128,9 @@ async function main(): Promise<void> {
     }
     const state = client.stateAt(now);
     const bodies = state.bodies as Body[];
-    // After a respawn the player has a new body, which the SDK does not predict yet (its
-    // README, "Not yet"): it is drawn interpolated, and the view still follows it. A
-    // spectator's view is the whole world, centred on its middle (positions are in [0, size)).
+    // The own ship, predicted (after a respawn too: the SDK follows the new body); before the
+    // first snapshot placed it, the player's ship as the server last sent it. A spectator's view
+    // is the whole world, centred on its middle (positions are in [0, size)).
     const mine = spectating ? null : state.own ?? bodies.find((b) => b.owner === page.playerId && b.kind === KIND_SHIP);
     if (mine) centre = { x: mine.x, y: mine.y };
     else if (spectating) centre = { x: world.width / 2, y: world.height / 2 };

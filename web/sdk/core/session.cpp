@@ -149,6 +149,20 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
     }
     shapes_.resize(kept);
 
+    // A respawn of ours (GameEvent respawn): the new ship is the own body from this snapshot
+    // on, predicted like the first (as client_sim/client_core.cpp follows it). Events are resent
+    // until acknowledged: each is taken once, by its sequence.
+    if (snapshot.table != nullptr) {
+        game_.clear();
+        const std::string problem = protocol::read_game(*snapshot.table, game_);
+        if (!problem.empty()) return fail("Snapshot: " + problem);
+        for (const protocol::game_event& e : game_.events) {
+            if (e.sequence <= last_event_) continue;
+            last_event_ = e.sequence;
+            if (e.kind == protocol::GameEventKind::respawn && e.player == player_id_) entity_id_ = e.body;
+        }
+    }
+
     const auto at = std::lower_bound(view_.begin(), view_.end(), entity_id_,
                                      [](const protocol::BodyState& body, std::uint32_t id) { return body.id() < id; });
     const protocol::BodyState* own = (at != view_.end() && at->id() == entity_id_) ? &*at : nullptr;

@@ -19,6 +19,7 @@
 #include "protocol/arena_generated.h"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/framing.hpp"
+#include "protocol/game.hpp"
 #include "protocol/shapes.hpp"
 #include "server/world/config.hpp"
 
@@ -91,7 +92,9 @@ private:
     std::vector<std::uint8_t> out_;
 
     std::uint32_t player_id_ = 0;
-    std::uint32_t entity_id_ = 0;
+    std::uint32_t entity_id_ = 0;   // the own body: the Welcome's, then each respawn's
+    std::uint32_t last_event_ = 0;  // the sequence of the newest game event taken
+    protocol::game_list game_;      // a snapshot's, being read
     std::uint16_t tick_rate_ = 0;
     std::uint16_t snapshot_rate_ = 0;
     std::optional<world::world_config> config_;
