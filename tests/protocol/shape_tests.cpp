@@ -126,7 +126,9 @@ TEST_CASE("A snapshot without shapes is the frame it was before shapes existed",
     const auto with_empty = ap::encode_snapshot(b, 7, 2, bodies, &empty);
     CHECK(std::vector<std::uint8_t>(without.begin(), without.end()) ==
           std::vector<std::uint8_t>(with_empty.begin(), with_empty.end()));
-    const auto view = ap::decode_snapshot(verified(std::vector<std::uint8_t>(without.begin(), without.end())));
+    // The view points into the frame's bytes: they must outlive it.
+    const std::vector<std::uint8_t> without_bytes(without.begin(), without.end());
+    const auto view = ap::decode_snapshot(verified(without_bytes));
     REQUIRE(view);
     CHECK(view.value.shapes == nullptr);
     CHECK(shapes_of(view.value).empty());
@@ -224,7 +226,9 @@ TEST_CASE("Shot origins ride with their shapes and round-trip exactly, and a non
     REQUIRE(list.wire_bytes() == 12 + 8 + 28);
     flatbuffers::FlatBufferBuilder fbb;
     const auto frame = ap::encode_delta_snapshot(fbb, 8, 41, 0, std::vector<std::uint8_t>{1}, &list);
-    const auto view = ap::decode_snapshot(verified(std::vector<std::uint8_t>(frame.begin(), frame.end())));
+    // The view points into the frame's bytes: they must outlive it.
+    const std::vector<std::uint8_t> bytes(frame.begin(), frame.end());
+    const auto view = ap::decode_snapshot(verified(bytes));
     REQUIRE(view);
     REQUIRE(view.value.shot_origins.size() == 1);
     const ap::ShotOrigin& o = view.value.shot_origins[0];
@@ -240,13 +244,15 @@ TEST_CASE("Shot origins ride with their shapes and round-trip exactly, and a non
     ap::shape_list plain;
     plain.append(circle(6, 1));
     const auto without = ap::encode_delta_snapshot(fbb, 9, 41, 0, std::vector<std::uint8_t>{1}, &plain);
-    const auto plain_view = ap::decode_snapshot(verified(std::vector<std::uint8_t>(without.begin(), without.end())));
+    const std::vector<std::uint8_t> without_bytes(without.begin(), without.end());
+    const auto plain_view = ap::decode_snapshot(verified(without_bytes));
     REQUIRE(plain_view);
     CHECK(plain_view.value.table->shot_origins() == nullptr);
 
     list.origins[0] = ap::ShotOrigin(5, 2, 41, 10.5f, std::numeric_limits<float>::quiet_NaN(), 40.0f, 0.125f);
     const auto bad = ap::encode_delta_snapshot(fbb, 10, 41, 0, std::vector<std::uint8_t>{1}, &list);
-    const auto refused = ap::decode_snapshot(verified(std::vector<std::uint8_t>(bad.begin(), bad.end())));
+    const std::vector<std::uint8_t> bad_bytes(bad.begin(), bad.end());
+    const auto refused = ap::decode_snapshot(verified(bad_bytes));
     REQUIRE_FALSE(refused);
     CHECK(refused.error == "the shot origin of body 5 is not finite");
 }
