@@ -4,30 +4,21 @@ namespace arena::net {
 
 namespace {
 
-std::string_view explain(udp_refusal why) {
-    switch (why) {
-        case udp_refusal::shape:
-            return "not an ENet connect, or one too short to answer";
-        case udp_refusal::rate:
-            return "over its address's connect rate";
-        case udp_refusal::peer_limit:
-            return "every peer slot is taken";
-    }
-    return "?";
-}
+// Each reason's key in the counters and its words in the log, indexed by udp_refusal.
+struct reason_words {
+    std::string_view key;
+    std::string_view why;
+};
+constexpr std::array<reason_words, udp_refusal_reasons> reasons = {{
+    {"shape", "not an ENet connect, or one too short to answer"},
+    {"rate", "over its address's connect rate"},
+    {"peer_limit", "every peer slot is taken"},
+}};
 
 }  // namespace
 
 std::string_view udp_refusal_key(udp_refusal why) {
-    switch (why) {
-        case udp_refusal::shape:
-            return "shape";
-        case udp_refusal::rate:
-            return "rate";
-        case udp_refusal::peer_limit:
-            return "peer_limit";
-    }
-    return "?";
+    return reasons[static_cast<std::size_t>(why)].key;
 }
 
 std::optional<std::string> udp_refusal_log::refused(udp_refusal why, std::string_view address, int64_t now_ns) {
@@ -39,7 +30,7 @@ std::optional<std::string> udp_refusal_log::refused(udp_refusal why, std::string
     std::string line = "udp: refused a datagram from ";
     line += address;
     line += ": ";
-    line += explain(why);
+    line += reasons[static_cast<std::size_t>(why)].why;
     if (state.silent > 0) {
         line += " (and " + std::to_string(state.silent) + " more for that reason since the last such line)";
     }
