@@ -221,11 +221,9 @@ bool match::on_spectator_hello(connection& c, client& cl, const admitted_hello& 
     cl.standing.spectator = true;
     cl.standing.last_input_tick = world_.tick();  // the idle timeout (kept off by Pings) starts now
     --awaiting_hello_;
-    const auto bodies = world_.bodies();
-    s.snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
     protocol::welcome_info welcome = welcome_for(id.value(), 0);  // entity_id 0: no body of its own
     welcome.view_radius = 0;                                      // its snapshots hold every body
-    c.send(protocol::encode_welcome(welcome));
+    send_welcome(c, s.snapshots, welcome);
     const std::string_view peer = c.peer();
     log_("spectate id=%u name=%s from %.*s", id.value(), s.name.c_str(), static_cast<int>(peer.size()), peer.data());
     return true;
@@ -480,10 +478,14 @@ protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) 
 }
 
 void match::send_welcome(world::player_id id, player& p) {
+    send_welcome(*p.who, p.snapshots, welcome_for(id.value(), p.body_id.value()));
+}
+
+void match::send_welcome(connection& c, snapshot_client& snapshots, const protocol::welcome_info& welcome) {
     const auto bodies = world_.bodies();
     // Ids grow: a static body added later has an id past this, and snapshots describe it.
-    p.snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
-    p.who->send(protocol::encode_welcome(welcome_for(id.value(), p.body_id.value())));
+    snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
+    c.send(protocol::encode_welcome(welcome));
 }
 
 void match::send_snapshots() {

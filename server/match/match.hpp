@@ -196,6 +196,8 @@ private:
     void leave(player_map::iterator it, const close_cause& cause);
     void spawn_pending(const std::vector<world::player_id>& owners, const std::vector<world::body_id>& bodies);
     void send_welcome(world::player_id id, player& p);
+    // Any client's Welcome: its shape tracker starts after the bodies it describes.
+    void send_welcome(connection& c, snapshot_client& snapshots, const protocol::welcome_info& welcome);
     void remove_player(player_map::iterator it, std::string_view reason);
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
