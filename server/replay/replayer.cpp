@@ -58,15 +58,17 @@ replay_report replayer::run(const replay_options& options) {
         if (!check(report.start_tick, file_header().start_hash)) return finish(report);
         if (options.on_tick) options.on_tick(world_.tick(), world_.hash());
     }
-    if (ended_) {
-        if (options.until && *options.until > world_.tick()) {
+    // The recording ended at `end_tick`: an `until` past it cannot be reached.
+    const auto ended_at = [&](uint32_t end_tick) -> replay_report {
+        if (options.until && *options.until > end_tick) {
             report.error = "tick " + std::to_string(*options.until) + " is after the recording's end at tick " +
-                           std::to_string(world_.tick());
+                           std::to_string(end_tick);
             return finish(report);
         }
         report.complete = true;
         return finish(report);
-    }
+    };
+    if (ended_) return ended_at(world_.tick());
 
     const auto reached_until = [&] {
         return options.until && world_.tick() == *options.until;
@@ -99,12 +101,7 @@ replay_report replayer::run(const replay_options& options) {
             const end_marker& e = std::get<end_marker>(next.value);
             if (!check(e.tick, e.hash)) return finish(report);
             ended_ = true;
-            if (options.until && *options.until > e.tick) {
-                report.error = "tick " + std::to_string(*options.until) + " is after the recording's end at tick " +
-                               std::to_string(e.tick);
-                return finish(report);
-            }
-            break;
+            return ended_at(e.tick);
         }
     }
     report.complete = true;
