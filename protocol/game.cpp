@@ -18,10 +18,12 @@ game_event from_wire(const GameEvent& e) {
     return {e.sequence(), e.tick(), e.kind(), e.size(), e.player(), e.other(), e.body(), e.value()};
 }
 
+const std::size_t game_list::line_bytes = sizeof(PlayerLine);
+const std::size_t game_list::event_bytes = sizeof(GameEvent);
+
 std::size_t game_list::wire_bytes() const {
-    std::size_t bytes = players.size() * sizeof(PlayerLine) + name_ids.size() * sizeof(std::uint32_t) +
-                        events.size() * sizeof(GameEvent);
-    for (const std::string& n : names) bytes += 4 + n.size() + 1;
+    std::size_t bytes = players.size() * line_bytes + events.size() * event_bytes;
+    for (const std::string& n : names) bytes += name_bytes(n);
     return bytes;
 }
 

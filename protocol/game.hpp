@@ -56,9 +56,12 @@ struct game_list {
         events.clear();
     }
     [[nodiscard]] bool empty() const { return players.empty() && name_ids.empty() && events.empty(); }
-    // Bytes these add to a message, FlatBuffers framing aside (a name: its length word, its
-    // bytes and the terminator).
+    // Bytes these add to a message, FlatBuffers framing aside (a name: its id, its length
+    // word, its bytes and the terminator), and each item's share of them.
     [[nodiscard]] std::size_t wire_bytes() const;
+    static const std::size_t line_bytes;
+    static const std::size_t event_bytes;
+    static std::size_t name_bytes(const std::string& name) { return sizeof(std::uint32_t) + 4 + name.size() + 1; }
     bool operator==(const game_list&) const = default;
 };
 

@@ -1,9 +1,15 @@
 #pragma once
 // What the players hear of the game (protocol/README.md, "Players and game events"): each
-// player's scoreboard line with the tick it last changed, each name with the tick it first
-// appeared, and the game's events of the last few snapshot intervals, numbered. The match
-// updates it once per tick from the rules; each snapshot then carries what changed after the
-// newest tick its client is known to hold (collect).
+// player's scoreboard line, each name, and the game's events of the last few snapshot
+// intervals, numbered. The match updates it once per tick from the rules; each snapshot then
+// carries what changed after what its client is known to hold (collect).
+//
+// Every change (a line's standing, a name appearing, an event) takes the next number of one
+// count, its version, so that what a client holds is one number: every change up to it. A
+// snapshot that must fit a datagram carries the oldest changes first, as many as fit, and
+// says through which version it is complete: a list too long for one datagram (32 names on
+// a client's first snapshot) goes over a few, and an acknowledgement never claims more than
+// arrived.
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -28,9 +34,15 @@ public:
     void update(uint32_t tick, std::span<const rules::score_line> board, std::span<const rules::game_event> events,
                 const std::map<world::player_id, std::string>& names);
 
-    // Into `out` (cleared first): the lines and names that changed after tick `after` (0:
-    // every one), and the events of the ticks after max(after, events_after).
-    void collect(uint32_t after, uint32_t events_after, protocol::game_list& out) const;
+    // Into `out` (cleared first): the lines and names whose version is after `after` (0:
+    // every one), and the events after max(after, events_after), lines and names in player id
+    // order. With `max_bytes` (game_list::wire_bytes; 0: no limit) only the oldest changes
+    // that fit. Returns the version through which `out` completes what `after` held: version()
+    // when nothing was left out.
+    uint32_t collect(uint32_t after, uint32_t events_after, protocol::game_list& out, size_t max_bytes = 0);
+
+    // The newest change's version (0: none yet).
+    [[nodiscard]] uint32_t version() const { return version_; }
 
     // Every line now, in player id order, with its name: the final scoreboard.
     [[nodiscard]] protocol::match_result result(uint32_t winner) const;
@@ -41,14 +53,25 @@ public:
 private:
     struct entry {
         protocol::player_row row;
-        uint32_t changed_at = 0;  // tick of the last change of score, kills, deaths, lives or state
+        uint32_t changed = 0;  // version of the last change of score, kills, deaths, lives or state
         std::string name;
-        uint32_t named_at = 0;  // tick its name was first known
+        uint32_t named = 0;  // version of its name's arrival; 0: not known yet
+    };
+    struct versioned_event {
+        uint32_t version;
+        protocol::game_event event;
+    };
+    // One of collect()'s candidates: its version and its bytes on the wire.
+    struct change {
+        uint32_t version;
+        size_t bytes;
     };
     uint32_t keep_ticks_;
     std::map<uint32_t, entry> players_;  // by player id
-    std::deque<protocol::game_event> events_;
+    std::deque<versioned_event> events_;
     uint32_t next_sequence_ = 1;
+    uint32_t version_ = 0;
+    std::vector<change> changes_;  // collect()'s scratch
 };
 
 }  // namespace arena::match

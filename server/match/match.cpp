@@ -165,7 +165,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
                                     input_buffer(config_.input_buffer),
                                     snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget()),
                                     0,
-                                    world_.tick()});
+                                    game_.version()});
         pending_joins_.push_back(id);
     } else {
         // The same player again: a reconnection, or a new connection taking over.
@@ -184,8 +184,8 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         p.inputs = input_buffer(config_.input_buffer);
         p.snapshots =
             snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget());  // holds no baseline yet
-        p.game_sent_tick = 0;
-        p.connected_tick = world_.tick();
+        p.game_sent = 0;
+        p.events_from = game_.version();
         if (p.body_id) pending_welcomes_.push_back(id);
         log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
     }
@@ -214,7 +214,7 @@ bool match::on_spectator_hello(connection& c, client& cl, const admitted_hello& 
     spectator& s =
         spectators_
             .emplace(id, spectator{&c, admitted.name, snapshot_client(baseline_ring(), false, c.snapshot_budget()), 0,
-                                   world_.tick()})
+                                   game_.version()})
             .first->second;
     cl.player_id = id;
     cl.standing.at = client_standing::stage::joined;
@@ -500,7 +500,7 @@ void match::send_snapshots() {
     // The shared frame (BodyState clients of whole-world views, on the interval's ticks)
     // carries what changed since the previous one: its clients got that one.
     const bool shared_due = phase == 0 && fanout_.shared_full_frame() && !game_.empty();
-    if (shared_due) game_.collect(fanout_.last_shared_tick(), fanout_.last_shared_tick(), shared_game_);
+    if (shared_due) shared_game_through_ = game_.collect(shared_game_sent_, shared_game_sent_, shared_game_);
     fanout_.begin(world_, &kinds_, shared_due ? &shared_game_ : nullptr, &origins_);
     // By id rather than by iterator: a send may end a connection, and with it a player.
     for (auto it = players_.begin(); it != players_.end();) {
@@ -511,26 +511,31 @@ void match::send_snapshots() {
         it = players_.upper_bound(id);
     }
     // Spectators, BodyState clients all, on the interval's ticks, after the players.
-    if (phase != 0) return;
-    for (auto it = spectators_.begin(); it != spectators_.end();) {
-        const world::player_id id = it->first;
-        send_snapshot(it->second, world::body_id{}, 0);  // no body: the whole world; no input to acknowledge
-        it = spectators_.upper_bound(id);
+    if (phase == 0) {
+        for (auto it = spectators_.begin(); it != spectators_.end();) {
+            const world::player_id id = it->first;
+            send_snapshot(it->second, world::body_id{}, 0);  // no body: the whole world; no input to acknowledge
+            it = spectators_.upper_bound(id);
+        }
     }
+    // The fan-out builds the shared frame only for a client that takes it.
+    if (shared_due && fanout_.last_shared_tick() == world_.tick()) shared_game_sent_ = shared_game_through_;
 }
 
 template <class Reader>
-const protocol::game_list* match::game_for(const Reader& r) {
+const protocol::game_list* match::game_for(Reader& r, uint32_t& through) {
     if (game_.empty()) return nullptr;
     uint32_t held = 0;
     if (r.snapshots.delta) {
         // Held: what the newest acknowledged snapshot sent to this client brought.
         const uint32_t acked = r.snapshots.acked_tick;
-        if (acked != 0 && acked < world_.tick() && r.snapshots.views.at(acked) != nullptr) held = acked;
+        if (acked != 0 && acked < world_.tick()) held = r.snapshots.views.game_at(acked);
     } else {
-        held = r.game_sent_tick;  // a stream: what was sent arrived
+        held = r.game_sent;  // a stream: what was sent arrived
     }
-    game_.collect(held, r.connected_tick, game_list_);
+    // Within a datagram the game takes at most half: the bodies keep the rest.
+    const size_t game_budget = r.snapshots.budget / 2;
+    through = game_.collect(held, r.events_from, game_list_, game_budget);
     return &game_list_;
 }
 
@@ -540,15 +545,17 @@ void match::send_snapshot(Reader& r, world::body_id own, uint32_t ack) {
     if (!r.snapshots.delta && fanout_.shared_full_frame()) {
         if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(r.snapshots)) {
             counters_.snapshot_bytes = shared->frame().size();
-            r.game_sent_tick = world_.tick();
+            r.game_sent = shared_game_through_;
             r.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
             return;
         }
     }
-    const protocol::game_list* game = game_for(r);
-    if (!r.snapshots.delta) r.game_sent_tick = world_.tick();
+    uint32_t through = 0;
+    const protocol::game_list* game = game_for(r, through);
+    if (!r.snapshots.delta) r.game_sent = through;
     const auto frame = r.snapshots.delta ? fanout_.delta_frame(r.snapshots, own, ack, game)
                                          : fanout_.full_frame(r.snapshots, own, ack, game);
+    if (r.snapshots.delta) r.snapshots.views.record_game(world_.tick(), through);
     counters_.snapshot_bytes = frame.size();
     r.who->send_snapshot_frame(frame);
 }

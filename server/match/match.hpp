@@ -158,9 +158,9 @@ private:
         uint32_t disconnected_at_tick = 0;
         world::body_id body_id;  // none (0) until spawned
         input_buffer inputs;
-        snapshot_client snapshots;    // delta baselines and the client's acknowledgement
-        uint32_t game_sent_tick = 0;  // BodyState clients: the tick of the last snapshot sent (game_feed)
-        uint32_t connected_tick = 0;  // the events a new connection hears start after it
+        snapshot_client snapshots;  // delta baselines and the client's acknowledgement
+        uint32_t game_sent = 0;     // BodyState clients: the game's version the last snapshot brought (game_feed)
+        uint32_t events_from = 0;   // the game's version at connection: the events it hears come after it
     };
     // A client that watches: it has no body, no input buffer, no score line and no identity
     // (admission.hpp); it gets the Welcome, the snapshots and the game like a player, and the
@@ -169,8 +169,8 @@ private:
         connection* who = nullptr;
         std::string name;
         snapshot_client snapshots;
-        uint32_t game_sent_tick = 0;  // the tick of the last snapshot sent (game_feed)
-        uint32_t connected_tick = 0;  // the events it hears start after it
+        uint32_t game_sent = 0;    // the game's version the last snapshot brought (game_feed)
+        uint32_t events_from = 0;  // the game's version at connection: the events it hears come after it
     };
     struct client {
         uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
@@ -211,7 +211,7 @@ private:
     void send_snapshot(Reader& r, world::body_id own, uint32_t ack);
     // Into game_list_: what `r`'s snapshot at this tick carries of the game.
     template <class Reader>
-    const protocol::game_list* game_for(const Reader& r);
+    const protocol::game_list* game_for(Reader& r, uint32_t& through);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
@@ -235,12 +235,14 @@ private:
     bool draining_ = false;
     snapshot_fanout fanout_;
     body_kinds kinds_;
-    shot_origins origins_;             // the live bullets' (tag_new_bodies)
-    uint32_t kinds_asked_below_ = 0;   // the rules were asked the kind of every body id below this
-    match_counters counters_;          // departed players' buffers folded in on leave
-    game_feed game_;                   // lines, names and events for the players (rules with state)
-    protocol::game_list game_list_;    // one client's, being sent
-    protocol::game_list shared_game_;  // the shared frame's
+    shot_origins origins_;              // the live bullets' (tag_new_bodies)
+    uint32_t kinds_asked_below_ = 0;    // the rules were asked the kind of every body id below this
+    match_counters counters_;           // departed players' buffers folded in on leave
+    game_feed game_;                    // lines, names and events for the players (rules with state)
+    protocol::game_list game_list_;     // one client's, being sent
+    protocol::game_list shared_game_;   // the shared frame's
+    uint32_t shared_game_sent_ = 0;     // the game's version the newest shared frame brought
+    uint32_t shared_game_through_ = 0;  // this tick's shared frame's
     bool over_ = false;
 };
 

@@ -29,6 +29,17 @@ void client_views::record(uint32_t tick, std::span<const uint32_t> indices, std:
     e.tick = tick;
     e.indices.assign(indices.begin(), indices.end());
     e.held.assign(held.begin(), held.end());
+    e.game = 0;
+}
+
+void client_views::record_game(uint32_t tick, uint32_t version) {
+    entry& e = entries_[ring_.slot(tick)];
+    if (e.tick == tick) e.game = version;
+}
+
+uint32_t client_views::game_at(uint32_t tick) const {
+    const entry& e = entries_[ring_.slot(tick)];
+    return tick != 0 && e.tick == tick ? e.game : 0;
 }
 
 std::span<const client_views::held_body> client_views::held_at(uint32_t tick) const {

@@ -51,12 +51,17 @@ public:
     [[nodiscard]] const std::vector<uint32_t>* at(uint32_t tick) const;
     // The held bodies of the view at `tick` (empty when none, or not kept).
     [[nodiscard]] std::span<const held_body> held_at(uint32_t tick) const;
+    // The game's version (game_feed.hpp) through which the snapshot of `tick`, recorded
+    // before, completed the client's game lists; 0 when that snapshot is not kept.
+    void record_game(uint32_t tick, uint32_t version);
+    [[nodiscard]] uint32_t game_at(uint32_t tick) const;
 
 private:
     struct entry {
         uint32_t tick = 0;
         std::vector<uint32_t> indices;
         std::vector<held_body> held;
+        uint32_t game = 0;
     };
     tick_ring ring_;
     std::vector<entry> entries_;

@@ -7,13 +7,16 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "match/drive.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/quantize.hpp"
 #include "protocol/delta/receiver.hpp"
+#include "protocol/game.hpp"
 #include "protocol/shapes.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/body_state.hpp"
@@ -265,4 +268,44 @@ TEST_CASE("the match takes each connection's budget: datagram clients trimmed, s
     for (const auto& f : udp.snapshots) CHECK(f.size() <= datagram);
     CHECK(std::ranges::any_of(tcp.snapshots, [](const auto& f) { return f.size() > datagram; }));
     CHECK(g.counters().snapshots.trimmed_frames == udp.snapshots.size());
+}
+
+TEST_CASE("32 players' names and lines go over a few datagrams, each frame within the budget",
+          "[match][budget][game]") {
+    match::match_config config;
+    config.tick_rate = tick_rate;
+    config.snapshot_rate = tick_rate / interval;
+    config.max_players = 32;
+    world::world_config world = world::asteroids_preset();
+    world.rules = world::game_rules::asteroids;
+    match::match g(config, world);
+    std::vector<datagram_client> clients(32);
+    for (size_t k = 0; k < clients.size(); ++k) {
+        const std::string name = "pilot-with-a-long-name-" + std::to_string(k);
+        REQUIRE(match_test::join(g, clients[k], {protocol::protocol_version, name, "", true}) != 0);
+    }
+    // Every client acknowledges what it decoded but client 0, which hears nothing back.
+    std::vector<uint32_t> sequence(clients.size(), 0), acked(clients.size(), 0);
+    std::vector<std::set<uint32_t>> names(clients.size());
+    std::vector<size_t> read(clients.size(), 0);
+    for (int t = 0; t < 60; ++t) {
+        g.tick();
+        for (size_t k = 0; k < clients.size(); ++k) {
+            for (; read[k] < clients[k].snapshots.size(); ++read[k]) {
+                const auto& frame = clients[k].snapshots[read[k]];
+                CHECK(frame.size() <= datagram);
+                const protocol::snapshot_view s = read_snapshot(frame);
+                protocol::game_list game;
+                REQUIRE(protocol::read_game(*s.table, game).empty());
+                names[k].insert(game.name_ids.begin(), game.name_ids.end());
+                acked[k] = s.tick;
+            }
+            protocol::input_msg in;
+            in.sequence = ++sequence[k];
+            in.snapshot_ack = k == 0 ? 0 : acked[k];
+            REQUIRE(match_test::send_input(g, clients[k], in));
+        }
+    }
+    for (size_t k = 1; k < clients.size(); ++k) CHECK(names[k].size() == 32);
+    CHECK(read[0] > 0);  // the silent client got its frames, each within the budget too
 }
