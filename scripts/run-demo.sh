@@ -10,14 +10,12 @@ seconds=${DEMO_SECONDS:-10}
 log=$(mktemp /tmp/arena-demo.XXXXXX)
 stats="$log.stats.json"
 recording="$log.arpl"
-config="$log.game.json"
-trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording" "$config"' EXIT
-# The asteroids preset played as a game: bullets, splitting rocks, lives and score.
-echo '{"preset": "asteroids", "rules": "asteroids"}' > "$config"
+trap 'kill "$server" 2>/dev/null || true; rm -f "$log" "$stats" "$recording"' EXIT
 
 echo "== arena-server (asteroids) with $bots bots for $seconds s =="
 # Room for a few players from the browser beside the bots.
-"$bin/arena-server" --port 0 --config "$config" --max-players $((bots + 4)) --duration $((seconds + 3)) \
+# The asteroids preset played as a game: bullets, splitting rocks, lives and score.
+"$bin/arena-server" --port 0 --preset asteroids --rules asteroids --max-players $((bots + 4)) --duration $((seconds + 3)) \
   --http-port "${DEMO_HTTP_PORT:-0}" --stats-json "$stats" --record "$recording" > "$log" 2> "$log.err" &
 server=$!
 port=""

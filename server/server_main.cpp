@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100000));
     app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
+    std::string rules_name;
+    app.add_option("--rules", rules_name,
+                   "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
+                   "overrides the config file's (default: the config's, else sandbox)");
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
     app.add_option("--record", record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s,
@@ -160,6 +164,15 @@ int main(int argc, char** argv) {
     } else {
         std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
         return 2;
+    }
+    if (!rules_name.empty()) {
+        const auto rules = config::rules_by_name(rules_name);
+        if (!rules) {
+            std::fprintf(stderr, "arena-server: --rules: unknown rules '%s' (%s)\n", rules_name.c_str(),
+                         config::rules_names_list().c_str());
+            return 2;
+        }
+        world_config.rules = *rules;
     }
 
     try {

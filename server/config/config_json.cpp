@@ -116,6 +116,22 @@ constexpr std::pair<const char*, world::boundary> boundary_names[] = {{"open", w
 constexpr std::pair<const char*, world::game_rules> rules_names[] = {{"sandbox", world::game_rules::sandbox},
                                                                      {"asteroids", world::game_rules::asteroids}};
 
+}  // namespace
+
+std::optional<world::game_rules> rules_by_name(std::string_view name) {
+    for (const auto& [n, rules] : rules_names)
+        if (name == n) return rules;
+    return std::nullopt;
+}
+
+std::string rules_names_list() {
+    std::string out;
+    for (const auto& [n, rules] : rules_names) out += (out.empty() ? "" : ", ") + std::string(n);
+    return out;
+}
+
+namespace {
+
 void read_material(const json& j, const std::string& path, world::body_material& m) {
     object_reader r(j, path);
     r.read("density", m.density);

@@ -5,6 +5,7 @@
 // an error naming the field.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -34,6 +35,11 @@ std::variant<world::world_config, config_error> parse_config_json(std::string_vi
 
 // Reads and parses a file; errors name the file.
 std::variant<world::world_config, config_error> load_config_file(const std::string& path);
+
+// The game rules a config's "rules" names ("sandbox", "asteroids"), or none for another name.
+std::optional<world::game_rules> rules_by_name(std::string_view name);
+// Those names, for a message: "sandbox, asteroids".
+std::string rules_names_list();
 
 // Every field, so that parse_config_json(config_to_json(c)) == c bit for bit.
 std::string config_to_json(const world::world_config& config);

@@ -1,4 +1,4 @@
-// Asteroids as a game, end to end: arena-server (rules "asteroids", recording) and 16 hunter
+// Asteroids as a game, end to end: arena-server (--rules asteroids, recording) and 16 hunter
 // bots (12 over TCP, 4 over WebSocket) as processes on loopback. The server's --duration ends the match, so every bot
 // gets the final scoreboard in the server's Bye; it must equal the server's own (--stats-json) and the recording's
 // (arena-replay --scoreboard).
@@ -39,14 +39,13 @@ json comparable(const json& lines, bool with_names) {
 TEST_CASE("16 hunter bots play a match: every client's final scoreboard is the server's and the replay's",
           "[e2e][game]") {
     temp_dir dir;
-    { std::ofstream(dir.file("game.json")) << R"({"preset": "asteroids", "rules": "asteroids"})"; }
     // 12 s of play: hunters shoot rocks within a second and each other within a few (16 of
     // them measured 8 kills in 12 s); the server ends the match, not the bots. 12 bots over
     // TCP and 4 over WebSocket: each transport's Bye carries the result.
     child_process server(
         bin_dir + "/arena-server",
-        {"--bind", "127.0.0.1", "--port", "0", "--http-port", "0", "--config", dir.file("game.json"), "--seed", "3",
-         "--duration", "12", "--record", dir.file("match.arpl"), "--stats-json", dir.file("stats.json")},
+        {"--bind", "127.0.0.1", "--port", "0", "--http-port", "0", "--preset", "asteroids", "--rules", "asteroids",
+         "--seed", "3", "--duration", "12", "--record", dir.file("match.arpl"), "--stats-json", dir.file("stats.json")},
         dir.file("server.log"));
     const auto port = arena::test::wait_for_listening(server, 5s);
     const auto http_port = arena::test::wait_for_port_line(server, "http listening on", 5s);

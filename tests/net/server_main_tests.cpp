@@ -12,6 +12,7 @@
 
 #include "common/run_command.hpp"
 #include "protocol/decode.hpp"
+#include "protocol/game.hpp"
 #include "protocol/version.hpp"
 #include "server_process.hpp"
 
@@ -79,6 +80,28 @@ TEST_CASE("a snapshot rate that does not divide the tick rate is refused, so the
         CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
     }
     CHECK(server_run("--snapshot-rate 30 --duration 0.2").exit_code == 0);
+}
+
+TEST_CASE("arena-server --rules names the game the match plays, and an unknown name is refused in one line",
+          "[net][cli]") {
+    const auto r = server_run("--rules chess --duration 0.2");
+    CHECK(r.exit_code == 2);
+    CHECK(r.output == "arena-server: --rules: unknown rules 'chess' (sandbox, asteroids)\n");
+    // With the Asteroids rules a player's snapshots carry its scoreboard line: three lives.
+    server_process server({"--preset", "asteroids", "--rules", "asteroids"});
+    test_client client(server.port());
+    client.send_frame(protocol::encode_hello(protocol::protocol_version, "ada", ""));
+    REQUIRE(client.read_until(Payload::Welcome));
+    const auto frame = client.read_until(Payload::Snapshot);
+    REQUIRE(frame);
+    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+    REQUIRE(snapshot);
+    protocol::game_list game;
+    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    REQUIRE(game.players.size() == 1);
+    CHECK(game.players[0].lives == 3);
+    CHECK(game.names == std::vector<std::string>{"ada"});
+    CHECK(server.stop(SIGTERM) == 0);
 }
 
 TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
