@@ -9,6 +9,7 @@
 #include "server/config/config_json.hpp"
 #include "server/replay/status.hpp"
 #include "server/world/little_endian.hpp"
+#include "server/world/version.hpp"
 
 namespace arena::replay {
 
@@ -67,7 +68,7 @@ protocol::result<reader> reader::open(const std::string& path) {
                                        ", this build reads up to " + std::to_string(current_format_version) + ")"));
     }
     if (h->format_version == 0) return r::failure(rd.at(0, "Header: format version 0 is not valid"));
-    if (h->world_version != world::world_version) {
+    if (h->world_version < world::oldest_replayable_world_version || h->world_version > world::world_version) {
         return r::failure(rd.at(0, "recorded with world version " + std::to_string(h->world_version) +
                                        ", this build simulates world version " + std::to_string(world::world_version) +
                                        ": the physics differ, so the hashes could not match (replay it with the "
@@ -90,6 +91,12 @@ protocol::result<reader> reader::open(const std::string& path) {
         return r::failure(rd.at(0, "Header: world config: " + e->message));
     }
     rd.config_ = std::get<world::world_config>(parsed);
+    if (const std::string changed = world::changed_since(h->world_version, rd.config_); !changed.empty()) {
+        return r::failure(rd.at(0, "recorded with world version " + std::to_string(h->world_version) +
+                                       ", this build simulates world version " + std::to_string(world::world_version) +
+                                       ", which changed what this world uses: " + changed +
+                                       " (replay it with the Arena version that recorded it)"));
+    }
     rd.header_ = std::move(*h);
     rd.next_tick_ = rd.header_.start_tick;
     return r::success(std::move(rd));

@@ -20,9 +20,11 @@
 namespace arena::world {
 
 // Version of the world's physics: bump when a change alters results on purpose, so that
-// recordings and clients from another version are recognised.
+// recordings and clients from another version are recognised (version.hpp says which older
+// recordings still replay).
 // 2: shapes (capsules, polygons, segments), contact friction and rotation at contacts.
-inline constexpr uint32_t world_version = 2;
+// 3: a chain's segments know their neighbours (ghost vertices) and collide on one side.
+inline constexpr uint32_t world_version = 3;
 
 class world {
 public:

@@ -192,6 +192,16 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
         encoder.append(other, bytes);
         expected = offset_text(file.path(), 0) + "recorded with world version";
     }
+    SECTION("a version-2 world with a chain, whose physics changed in version 3") {
+        header other = h;
+        other.world_version = 2;
+        other.world_config =
+            R"({"preset": "platformer", "bodies": [{"shape": {"type": "chain", "points": [[0, 1], [10, 1], [20, 3]]}}]})";
+        encoder.append(other, bytes);
+        expected = offset_text(file.path(), 0) +
+                   "recorded with world version 2, this build simulates world version 3, which changed what this "
+                   "world uses: chains";
+    }
     SECTION("a config that does not parse") {
         header other = h;
         other.world_config = R"({"gravity": "down"})";
