@@ -16,6 +16,11 @@ using protocol::RejectCode;
 
 namespace {
 
+// Seconds of game events a client that hears nothing can still catch up on: a loss of
+// snapshots that long, while its inputs still arrive (longer, the connection is as good as
+// gone). Events are small: 28 bytes each, a few a second.
+constexpr uint32_t event_memory_s = 10;
+
 admission_limits limits_of(const match_config& c) {
     admission_limits l;
     l.tick_rate = c.tick_rate;
@@ -45,8 +50,9 @@ match::match(const match_config& config, const world::world_config& world_config
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
       fanout_({config.view_radius, baseline_ring(), config.tick_rate}),
-      // Events are kept as long as a delta baseline: an acknowledgement older cannot be used.
-      game_(config.delta_history * snapshot_interval()) {
+      // Events are kept for a few seconds of lost snapshots (each client's acknowledgements
+      // say what it holds, however old), at least as long as a delta baseline.
+      game_(std::max(config.delta_history * snapshot_interval(), event_memory_s * config.tick_rate)) {
     // The Welcome tells clients the snapshot rate; it must be the rate they get.
     if (config.tick_rate == 0 || config.snapshot_rate == 0 || config.tick_rate % config.snapshot_rate != 0)
         throw std::invalid_argument("snapshot rate " + std::to_string(config.snapshot_rate) +
@@ -259,7 +265,7 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
         return true;
     }
     player& p = it->second;
-    p.snapshots.acked_tick = input.snapshot_ack;
+    p.snapshots.acknowledge(input.snapshot_ack);
     for (const sequenced_input& earlier : in.recovered) p.inputs.push(earlier);
     counters_.inputs_recovered += in.recovered.size();
     counters_.inputs_lost += in.lost;
@@ -527,9 +533,7 @@ const protocol::game_list* match::game_for(Reader& r, uint32_t& through) {
     if (game_.empty()) return nullptr;
     uint32_t held = 0;
     if (r.snapshots.delta) {
-        // Held: what the newest acknowledged snapshot sent to this client brought.
-        const uint32_t acked = r.snapshots.acked_tick;
-        if (acked != 0 && acked < world_.tick()) held = r.snapshots.views.game_at(acked);
+        held = r.snapshots.game_held;  // what its acknowledged snapshots brought
     } else {
         held = r.game_sent;  // a stream: what was sent arrived
     }

@@ -20,6 +20,7 @@
 // Delta clients are spread over the ticks between two snapshots (match.cpp), so the fan-out
 // runs every tick for a share of them: each piece of per-tick work (quantising, indexing, the
 // shared frame) is done on first use in that tick.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -50,10 +51,19 @@ struct snapshot_client {
     bool delta = false;               // the client decodes delta snapshots
     size_t budget = 0;                // delta clients: bytes a snapshot frame may take; 0: no limit
     uint32_t acked_tick = 0;          // its newest Input.snapshot_ack; 0: none
+    uint32_t game_held = 0;           // the game's version it holds (game_feed.hpp): the most its acks brought
     client_views views;               // what its recent snapshots held
     shape_tracker shapes;             // which shapes it holds
     uint32_t shared_tick = 0;         // BodyState clients of a whole-world view: the tick of its last frame
     priority_accumulator priorities;  // with a budget: which bodies go in next
+
+    // An Input's snapshot_ack (inputs come in order: the newest). A snapshot still kept adds
+    // what it brought of the game; an older one changes nothing, so an ack that comes back
+    // after a long loss does not make the client look as if it held nothing.
+    void acknowledge(uint32_t tick) {
+        acked_tick = tick;
+        game_held = std::max(game_held, views.game_at(tick));
+    }
 };
 
 struct fanout_counters {

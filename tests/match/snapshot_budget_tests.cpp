@@ -309,3 +309,54 @@ TEST_CASE("32 players' names and lines go over a few datagrams, each frame withi
     for (size_t k = 1; k < clients.size(); ++k) CHECK(names[k].size() == 32);
     CHECK(read[0] > 0);  // the silent client got its frames, each within the budget too
 }
+
+TEST_CASE("a client whose snapshots were lost for longer than the baselines last is not sent the game again",
+          "[match][budget][game]") {
+    match::match_config config;
+    config.tick_rate = tick_rate;
+    config.snapshot_rate = tick_rate / interval;
+    world::world_config world = world::asteroids_preset();
+    world.rules = world::game_rules::asteroids;
+    match::match g(config, world);
+    std::vector<datagram_client> clients(4);
+    for (size_t k = 0; k < clients.size(); ++k) {
+        const std::string name = "player-" + std::to_string(k);
+        REQUIRE(match_test::join(g, clients[k], {protocol::protocol_version, name, "", true}) != 0);
+    }
+    uint32_t sequence = 0, acked = 0;
+    size_t read = 0;
+    // Names carried by the snapshots client 0 decodes from `from` on.
+    const auto names_after = [&](size_t from) {
+        size_t names = 0;
+        for (size_t n = from; n < clients[0].snapshots.size(); ++n) {
+            protocol::game_list game;
+            REQUIRE(protocol::read_game(*read_snapshot(clients[0].snapshots[n]).table, game).empty());
+            names += game.names.size();
+        }
+        return names;
+    };
+    const auto play = [&](int ticks, bool hears) {
+        for (int t = 0; t < ticks; ++t) {
+            g.tick();
+            if (hears)
+                for (; read < clients[0].snapshots.size(); ++read)
+                    acked = read_snapshot(clients[0].snapshots[read]).tick;
+            read = clients[0].snapshots.size();
+            for (size_t k = 0; k < clients.size(); ++k) {
+                protocol::input_msg in;
+                in.sequence = ++sequence;  // one count for all: each client's inputs still go up
+                in.snapshot_ack = k == 0 ? acked : 0;
+                REQUIRE(match_test::send_input(g, clients[k], in));
+            }
+        }
+    };
+    play(30, true);
+    REQUIRE(names_after(0) >= 4);  // it learnt every name
+    // 3 s without a snapshot: longer than the 32 baselines kept (1.6 s), so its ack names one
+    // that is gone.
+    play(180, false);
+    const size_t from = clients[0].snapshots.size();
+    play(30, true);
+    CHECK(clients[0].snapshots.size() > from);
+    CHECK(names_after(from) == 0);
+}
