@@ -71,6 +71,10 @@ TEST_CASE("substeps: read, checked, and written only when not 1", "[config][subs
     CHECK(std::get<world::world_config>(back).substeps == 4);
     CHECK(world::config_hash(std::get<world::world_config>(back)) == world::config_hash(c));
     CHECK(world::config_hash(c) != world::config_hash(world::world_config{}));
+    // The pyramid preset sub-steps, and survives JSON too.
+    auto pyramid = config::parse_config_json(R"({"preset": "pyramid"})");
+    REQUIRE(std::holds_alternative<world::world_config>(pyramid));
+    CHECK(std::get<world::world_config>(pyramid).substeps == 4);
     // A one-step config's JSON does not name the field: its text and its hash in Welcome and
     // in recordings stay what they were before sub-steps existed.
     CHECK(config::config_to_json(world::world_config{}).find("substeps") == std::string::npos);

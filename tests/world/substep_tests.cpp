@@ -34,6 +34,10 @@ TEST_CASE("a 20-level pyramid stands for 10 s in 4 sub-steps", "[world][substeps
     CHECK(top_drift(20, 4, 600) < 0.01f);
 }
 
+TEST_CASE("the pyramid preset steps in 4 sub-steps", "[world][substeps]") {
+    CHECK(pyramid_preset(10).substeps == 4);
+}
+
 TEST_CASE("a ball dropped in sub-steps bounces back at e times its impact speed", "[world][substeps]") {
     for (real e : {0.3f, 0.5f, 0.8f}) {
         world_config c;
