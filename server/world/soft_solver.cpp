@@ -52,9 +52,9 @@ void soft_contact_solver::step(std::span<body> bodies, std::span<contact> contac
     for (uint32_t k = 0; k < n; ++k) {
         integrate_velocities();
         warm_start(contacts);
-        for (int pass = 0; pass < soft_passes; ++pass) solve(contacts, h, &soft);
+        for (int pass = 0; pass < soft_passes; ++pass) solve<true>(contacts, h, soft);
         integrate_positions(h);
-        solve(contacts, h, nullptr);
+        solve<false>(contacts, h, soft);
     }
     restitution(contacts, config.restitution_threshold);
     scatter(bodies);
@@ -106,12 +106,14 @@ void soft_contact_solver::warm_start(std::span<contact> contacts) {
     }
 }
 
-// One pass over the contacts: the normal first (it bounds friction), then friction. With a
-// spring `push`, an overlap is pushed apart through it; without, the contact is only kept from
-// closing (the relax pass). A gap may close within the sub-step either way: the speculative
-// target is separation/h.
-void soft_contact_solver::solve(std::span<contact> contacts, real h, const softness* push) {
+// One pass over the contacts: the normal first (it bounds friction), then friction. With Push,
+// an overlap is pushed apart through the spring `soft`; without, the contact is only kept from
+// closing (the relax pass: mass scale 1, nothing taken back). A gap may close within the
+// sub-step either way: the speculative target is separation/h.
+template <bool Push>
+void soft_contact_solver::solve(std::span<contact> contacts, real h, const softness& soft) {
     const real inv_h = 1.0f / h;
+    const real spring_rate = soft.mass_scale * soft.bias_rate;  // 1/s
     for (contact& c : contacts) {
         body_slot& sa = slots_[c.slot_a];
         body_slot& sb = slots_[c.slot_b];
@@ -122,16 +124,20 @@ void soft_contact_solver::solve(std::span<contact> contacts, real h, const softn
             contact_point& p = c.points[k];
             const vec2 shift = moved + cross(sb.da, p.anchor_b) - cross(sa.da, p.anchor_a);
             const real separation = p.separation + shift.dot(n);
-            real bias = 0, mass_scale = 1, impulse_scale = 0;
-            if (separation > 0) {
-                bias = separation * inv_h;
-            } else if (push) {
-                bias = std::max(push->mass_scale * push->bias_rate * separation, -max_push_speed);
-                mass_scale = push->mass_scale;
-                impulse_scale = push->impulse_scale;
-            }
+            // Selects rather than branches: resting contacts hover about zero separation, and
+            // which side a point is on is a coin toss the branch predictor lost.
+            const bool gap = separation > 0;
             const real vn = pair.relative(n, p.rn_a, p.rn_b);
-            const real change = -p.normal_mass * (mass_scale * vn + bias) - impulse_scale * p.normal_impulse;
+            real change;
+            if constexpr (Push) {
+                const real spring = std::max(spring_rate * separation, -max_push_speed);
+                const real bias = gap ? separation * inv_h : spring;
+                const real mass_scale = gap ? 1.0f : soft.mass_scale;
+                const real impulse_scale = gap ? 0.0f : soft.impulse_scale;
+                change = -p.normal_mass * (mass_scale * vn + bias) - impulse_scale * p.normal_impulse;
+            } else {
+                change = -p.normal_mass * (vn + (gap ? separation * inv_h : 0.0f));
+            }
             const real total = std::max(p.normal_impulse + change, 0.0f);
             const real lambda = total - p.normal_impulse;
             p.normal_impulse = total;

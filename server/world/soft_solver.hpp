@@ -60,7 +60,8 @@ private:
     void integrate_velocities();
     void integrate_positions(real h);
     void warm_start(std::span<contact> contacts);
-    void solve(std::span<contact> contacts, real h, const softness* push);
+    template <bool Push>
+    void solve(std::span<contact> contacts, real h, const softness& soft);
     void restitution(std::span<contact> contacts, real threshold);
     void scatter(std::span<body> bodies);
 
