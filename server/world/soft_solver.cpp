@@ -78,8 +78,7 @@ void soft_contact_solver::prepare(std::span<contact> contacts) {
         for (int k = 0; k < c.count; ++k) {
             contact_point& p = c.points[k];
             prepare_point_masses(p, a, b, n, t);
-            const vec2 dv = b.v + cross(b.w, p.anchor_b) - a.v - cross(a.w, p.anchor_a);
-            p.bounce = dv.dot(n);
+            p.bounce = normal_velocity(p, a, b, n);
             p.step_impulse = 0;
         }
     }

@@ -17,8 +17,7 @@ void contact_solver::solve_velocities(std::span<body> bodies, std::span<contact>
         for (int k = 0; k < c.count; ++k) {
             contact_point& p = c.points[k];
             prepare_point_masses(p, a, b, n, t);
-            const vec2 dv = b.v + cross(b.w, p.anchor_b) - a.v - cross(a.w, p.anchor_a);
-            const real vn = dv.dot(n);
+            const real vn = normal_velocity(p, a, b, n);
             // A fast approach that reaches contact within this step bounces; otherwise a gap may
             // close (speculative contact: approach at most separation/Δt) and an overlap may not grow.
             const bool hits_this_step = p.separation + vn * dt < 0;

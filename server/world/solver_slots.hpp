@@ -60,6 +60,12 @@ inline void prepare_point_masses(contact_point& p, const body_slot& a, const bod
     p.tangent_mass = kt > 0 ? 1.0f / kt : 0.0f;
 }
 
+// The relative normal velocity at a point from its slots' velocities: negative when closing.
+inline real normal_velocity(const contact_point& p, const body_slot& a, const body_slot& b, const vec2& n) {
+    const vec2 dv = b.v + cross(b.w, p.anchor_b) - a.v - cross(a.w, p.anchor_a);
+    return dv.dot(n);
+}
+
 // A contact's two bodies while its points are solved, in locals: the stores and reloads
 // through the slots were a chain of store forwards in the solvers' inner loops.
 struct contact_pair {
