@@ -324,6 +324,11 @@ void check_ranges(const world::world_config& c) {
     r.field("angular_damping", c.angular_damping, 0, 1000, "1/s");
     if (c.velocity_iterations > 100 || c.position_iterations > 100)
         throw bad_field{"solver iterations must be at most 100"};
+    if (c.substeps < 1 || c.substeps > max_substeps)
+        throw bad_field{"field 'substeps' must be in [1, " + std::to_string(max_substeps) + "], got " +
+                        std::to_string(c.substeps)};
+    if (c.substeps > 1 && c.integrator != world::integrator::semi_implicit)
+        throw bad_field{"field 'substeps' above 1 needs integrator semi-implicit (the sub-steps integrate that way)"};
     r.field("restitution_threshold", c.restitution_threshold, 0, 1e4, "m/s");
     r.field("penetration_slop", c.penetration_slop, 0, 1, "m");
     r.field("speculative_distance", c.speculative_distance, 0, 10, "m");
@@ -362,6 +367,7 @@ world::world_config read_world(const json& j) {
     r.read("angular_damping", c.angular_damping);
     r.read("velocity_iterations", c.velocity_iterations);
     r.read("position_iterations", c.position_iterations);
+    r.read("substeps", c.substeps);
     r.read("restitution_threshold", c.restitution_threshold);
     r.read("penetration_slop", c.penetration_slop);
     r.read("speculative_distance", c.speculative_distance);
@@ -497,6 +503,8 @@ std::string config_to_json(const world::world_config& c) {
     // Only rules other than the sandbox's: the JSON of a sandbox world (and its hash in
     // Welcome and in recordings) stays what it was before rules existed.
     if (c.rules != world::game_rules::sandbox) j["rules"] = enum_name(c.rules, rules_names);
+    // Only sub-stepped worlds name their sub-steps, for the same reason.
+    if (c.substeps != 1) j["substeps"] = c.substeps;
     return j.dump(2);
 }
 

@@ -25,6 +25,9 @@ inline constexpr size_t max_config_bytes = 1 << 20;
 // (protocol/delta/quantize.hpp), and every body fits the delta decoder's 2^20.
 inline constexpr double max_world_size = 1e6;  // m
 inline constexpr uint32_t max_world_bodies = 1u << 20;
+// Sub-steps per step (world_config::substeps): Box2D v3 uses 4; beyond 8 a step costs more
+// than it gains.
+inline constexpr uint32_t max_substeps = 8;
 
 struct config_error {
     std::string message;  // one line: what is wrong and where

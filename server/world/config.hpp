@@ -104,6 +104,12 @@ struct world_config {
     real correction_fraction = 0.2f;    // share of the remaining overlap removed per iteration
     real max_correction = 0.2f;         // m, largest positional push per contact per iteration
     uint32_t max_bodies = 1u << 20;     // spawns beyond this fail
+    // 1 to 8. 1: the one-step solver (solver.hpp: the iterations, correction_fraction and
+    // max_correction above, once per step). More: Box2D v3's soft step (soft_solver.hpp):
+    // contacts found once per step, then this many sub-steps of dt/substeps, each integrating,
+    // solving soft contacts and relaxing; those fields are not used then, and velocities and
+    // positions integrate semi-implicitly whatever `integrator` says.
+    uint32_t substeps = 1;
     body_material player{};
     control_config control{};
     rock_config rocks{};

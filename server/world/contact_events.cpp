@@ -24,14 +24,15 @@ void contact_event_tracker::measure_approach(std::span<const body> bodies, std::
     }
 }
 
-void contact_event_tracker::collect(std::span<const body> bodies, std::span<const contact> contacts) {
+void contact_event_tracker::collect(std::span<const body> bodies, std::span<const contact> contacts, bool sub_stepped) {
     events_.clear();
     now_.clear();
     for (size_t k = 0; k < contacts.size(); ++k) {
         const contact& c = contacts[k];
         if (c.with != wall::none) continue;
         real impulse = 0;
-        for (int i = 0; i < c.count; ++i) impulse += c.points[i].normal_impulse;
+        for (int i = 0; i < c.count; ++i)
+            impulse += sub_stepped ? c.points[i].step_impulse : c.points[i].normal_impulse;
         if (!(c.separation <= 0 || impulse > 0)) continue;
         const body& a = bodies[c.a];
         const body& b = bodies[c.b];

@@ -29,7 +29,9 @@ public:
     // Before the solve: each body pair's closing speed (the velocities the solver starts from).
     void measure_approach(std::span<const body> bodies, std::span<const contact> contacts);
     // After the solve: the pairs that began touching, sorted by (a, b); remembers this step's.
-    void collect(std::span<const body> bodies, std::span<const contact> contacts);
+    // `sub_stepped`: the impulses are the points' step_impulse (summed over the sub-steps, see
+    // soft_solver.hpp) rather than their normal_impulse.
+    void collect(std::span<const body> bodies, std::span<const contact> contacts, bool sub_stepped = false);
 
     std::span<const contact_event> events() const { return events_; }
     // Forgets the pairs touching now, so that the next step reports them again (a world that

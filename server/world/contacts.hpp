@@ -30,6 +30,8 @@ struct contact_point {
                                // −separation/Δt for a gap that may close this step
     real rn_a = 0, rn_b = 0;   // m, anchor × normal for a and b (the solver's lever arms)
     real rt_a = 0, rt_b = 0;   // m, anchor × tangent
+    real step_impulse = 0;     // N·s, the normal impulse applied over the whole step, summed over
+                               // its sub-steps (the sub-stepped solver only, soft_solver.hpp)
     uint16_t id = 0;           // feature id (manifold.hpp): the key for warm starting
 };
 

@@ -74,6 +74,11 @@ uint64_t config_hash(const world_config& c) {
         h.add_u8(0x52);
         h.add_u8(static_cast<uint8_t>(c.rules));
     }
+    // Only sub-stepped configs: configs from before sub-steps existed keep their hashes.
+    if (c.substeps != 1) {
+        h.add_u8(0x53);
+        h.add_u32(c.substeps);
+    }
     return h.value();
 }
 

@@ -38,26 +38,44 @@ inline real resist(real value, real before, real delta) {
 
 }  // namespace detail
 
+// What one velocity step of Δt adds to a body: (F/m)·Δt and (τ/I)·Δt, and the resistance's
+// share (friction, drag, damping), which may stop a component but never reverse it. The
+// sub-stepped solver (soft_solver.hpp) computes it once per step and adds it every sub-step.
+struct velocity_increment {
+    vec2 dv{0, 0};         // m/s, from the forces
+    real dw = 0;           // rad/s, from the torque
+    vec2 resist_dv{0, 0};  // m/s, from the resistance
+    real resist_dw = 0;    // rad/s, from the resistance torque
+};
+
+inline velocity_increment velocity_increment_of(const body& b, real dt) {
+    return {b.force * (b.inv_mass * dt), b.torque * (b.inv_inertia * dt), b.resistance * (b.inv_mass * dt),
+            b.resistance_torque * (b.inv_inertia * dt)};
+}
+
+// v += dv, ω += dw, then the resistance's share, clipped so that it never reverses the motion.
+inline void add_velocity_increment(vec2& v, real& w, const velocity_increment& inc) {
+    const vec2 before = v;
+    v += inc.dv;
+    const real omega_before = w;
+    w += inc.dw;
+    // No resistance (most bodies, most steps): nothing can overshoot and resist() would return
+    // value + delta, so add it without the tests. Still add it, for the same bits (−0 + 0 is +0).
+    if (inc.resist_dv == vec2{0, 0} && inc.resist_dw == 0) {
+        v += inc.resist_dv;
+        w += inc.resist_dw;
+        return;
+    }
+    v.x() = detail::resist(v.x(), before.x(), inc.resist_dv.x());
+    v.y() = detail::resist(v.y(), before.y(), inc.resist_dv.y());
+    w = detail::resist(w, omega_before, inc.resist_dw);
+}
+
 // v += (F/m)·Δt and ω += (τ/I)·Δt, then the resistance (friction, drag, damping), which may
 // bring a component of velocity to exactly zero but never reverse it.
 inline void integrate_velocity(body& b, real dt) {
     if (b.is_static()) return;
-    const vec2 before = b.velocity;
-    b.velocity += b.force * (b.inv_mass * dt);
-    const vec2 delta = b.resistance * (b.inv_mass * dt);
-    const real omega_before = b.angular_velocity;
-    b.angular_velocity += b.torque * (b.inv_inertia * dt);
-    const real omega_delta = b.resistance_torque * (b.inv_inertia * dt);
-    // No resistance (most bodies, most steps): nothing can overshoot and resist() would return
-    // value + delta, so add it without the tests. Still add it, for the same bits (−0 + 0 is +0).
-    if (b.resistance == vec2{0, 0} && b.resistance_torque == 0) {
-        b.velocity += delta;
-        b.angular_velocity += omega_delta;
-        return;
-    }
-    b.velocity.x() = detail::resist(b.velocity.x(), before.x(), delta.x());
-    b.velocity.y() = detail::resist(b.velocity.y(), before.y(), delta.y());
-    b.angular_velocity = detail::resist(b.angular_velocity, omega_before, omega_delta);
+    add_velocity_increment(b.velocity, b.angular_velocity, velocity_increment_of(b, dt));
 }
 
 // x += v·Δt and θ += ω·Δt (θ wrapped into (−π, π]).

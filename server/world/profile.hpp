@@ -10,6 +10,10 @@
 
 namespace arena::world {
 
+// With world_config::substeps > 1 the sub-steps integrate velocities and positions themselves:
+// forces_velocities is the forces alone, solver the whole of the sub-steps (integration, warm
+// starts, soft and relax passes, restitution), positions the clearing and wrapping, correction
+// who stands on what.
 enum class step_phase : uint8_t {
     inputs,             // apply_inputs
     forces_velocities,  // forces, resistance and velocity integration

@@ -13,6 +13,7 @@
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
 #include "server/world/contacts.hpp"
+#include "server/world/solver_slots.hpp"
 
 namespace arena::world {
 
@@ -27,17 +28,7 @@ public:
     void correct_positions(std::span<body> bodies, std::span<const contact> contacts, const world_config& config);
 
 private:
-    struct slot {
-        vec2 v{0, 0};          // m/s
-        real w = 0;            // rad/s
-        real inv_mass = 0;     // 1/kg
-        real inv_inertia = 0;  // 1/(kg·m²)
-        vec2 dp{0, 0};         // m, positional correction so far
-        real da = 0;           // rad, angular correction so far
-    };
-    std::vector<slot> slots_;
-    std::vector<uint32_t> body_of_;  // slot → body index (slot 0: none)
-    std::vector<uint32_t> slot_of_;  // body index → slot, 0 outside a step
+    solver_slots slots_;
 };
 
 }  // namespace arena::world

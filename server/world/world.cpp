@@ -60,6 +60,10 @@ void world::step(const tick_inputs& inputs) {
     scratch_.laps = timer_.now_ns ? &laps : nullptr;
     apply_inputs(inputs);
     laps.lap(step_phase::inputs);
+    if (config_.substeps > 1) {
+        step_substepped(laps);
+        return;
+    }
     const body_extent extent = integrate_velocities();
     laps.lap(step_phase::forces_velocities);
     detect_collisions(extent);
@@ -74,6 +78,31 @@ void world::step(const tick_inputs& inputs) {
     laps.lap(step_phase::positions);
     solver_.correct_positions(bodies_, contacts_, config_);
     wrap_touched_bodies();
+    note_supported();
+    laps.lap(step_phase::correction);
+    laps.finish();
+    scratch_.laps = nullptr;
+    ++tick_;
+}
+
+// Box2D v3's soft step: forces, detection, then the sub-steps (soft_solver.hpp), which integrate
+// velocities and positions themselves; accumulators cleared and every body wrapped after them.
+void world::step_substepped(phase_laps& laps) {
+    const body_extent extent = accumulate_all_forces();
+    laps.lap(step_phase::forces_velocities);
+    detect_collisions(extent);
+    laps.lap(step_phase::narrow_phase);
+    impulses_.load(bodies_, contacts_);
+    if (events_on_) events_.measure_approach(bodies_, contacts_);
+    soft_solver_.step(bodies_, contacts_, config_);
+    if (events_on_) events_.collect(bodies_, contacts_, true);
+    impulses_.store(bodies_, contacts_);
+    laps.lap(step_phase::solver);
+    for (body& b : bodies_) {
+        clear_accumulators(b);
+        wrap_position(b, config_);
+    }
+    laps.lap(step_phase::positions);
     note_supported();
     laps.lap(step_phase::correction);
     laps.finish();
@@ -106,6 +135,15 @@ body_extent world::integrate_velocities() {
         accumulate_forces(b, config_);
         if (config_.integrator == integrator::explicit_euler) integrate_position(b, dt);  // old velocity
         integrate_velocity(b, dt);
+        if (!b.is_static()) extent.add(b);
+    }
+    return extent;
+}
+
+body_extent world::accumulate_all_forces() {
+    body_extent extent;
+    for (body& b : bodies_) {
+        accumulate_forces(b, config_);
         if (!b.is_static()) extent.add(b);
     }
     return extent;

@@ -14,6 +14,7 @@
 #include "server/world/profile.hpp"
 #include "server/world/rng.hpp"
 #include "server/world/shape.hpp"
+#include "server/world/soft_solver.hpp"
 #include "server/world/solver.hpp"
 #include "server/world/static_index.hpp"
 
@@ -67,7 +68,8 @@ public:
     // The shape of `b` (one of this world's bodies): its own, or a circle of its radius.
     shape shape_of(const body& b) const;
 
-    // Advances one fixed Δt. Inputs must have passed check_input (they are clamped here);
+    // Advances one fixed Δt (in config().substeps sub-steps when more than 1, see
+    // soft_solver.hpp). Inputs must have passed check_input (they are clamped here);
     // inputs for unknown bodies are ignored.
     void step(const tick_inputs& inputs);
 
@@ -95,7 +97,9 @@ public:
 
 private:
     void apply_inputs(const tick_inputs& inputs);
-    body_extent integrate_velocities();  // forces, velocities (and explicit Euler's positions)
+    void step_substepped(phase_laps& laps);  // the rest of step() when config_.substeps > 1
+    body_extent integrate_velocities();      // forces, velocities (and explicit Euler's positions)
+    body_extent accumulate_all_forces();     // forces only (the sub-stepped solver integrates)
     void detect_collisions(const body_extent& extent);
     void integrate_positions();  // positions, clearing, wrapping of bodies in no contact
     void wrap_touched_bodies();  // wrapping of the bodies in contacts
@@ -120,6 +124,7 @@ private:
     std::vector<uint8_t> touched_;  // body index → in a contact this step (wrap worlds only)
     impulse_cache impulses_;
     contact_solver solver_;
+    soft_contact_solver soft_solver_;  // config_.substeps > 1
     static_index statics_;
     bool statics_dirty_ = true;  // bodies added or removed since statics_ was built
     std::vector<uint32_t> query_scratch_;

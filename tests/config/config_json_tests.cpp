@@ -59,3 +59,27 @@ TEST_CASE("a missing config file is reported with its path", "[config]") {
     REQUIRE(std::holds_alternative<config::config_error>(r));
     CHECK(std::get<config::config_error>(r).message.find("/nonexistent/arena.json") != std::string::npos);
 }
+
+TEST_CASE("substeps: read, checked, and written only when not 1", "[config][substeps]") {
+    auto r = config::parse_config_json(R"({"substeps": 4})");
+    REQUIRE(std::holds_alternative<world::world_config>(r));
+    const auto& c = std::get<world::world_config>(r);
+    CHECK(c.substeps == 4);
+    // A sub-stepped config survives JSON, and its hash is not the one-step config's.
+    auto back = config::parse_config_json(config::config_to_json(c));
+    REQUIRE(std::holds_alternative<world::world_config>(back));
+    CHECK(std::get<world::world_config>(back).substeps == 4);
+    CHECK(world::config_hash(std::get<world::world_config>(back)) == world::config_hash(c));
+    CHECK(world::config_hash(c) != world::config_hash(world::world_config{}));
+    // The pyramid preset sub-steps, and survives JSON too.
+    auto pyramid = config::parse_config_json(R"({"preset": "pyramid"})");
+    REQUIRE(std::holds_alternative<world::world_config>(pyramid));
+    CHECK(std::get<world::world_config>(pyramid).substeps == 4);
+    // A one-step config's JSON does not name the field: its text and its hash in Welcome and
+    // in recordings stay what they were before sub-steps existed.
+    CHECK(config::config_to_json(world::world_config{}).find("substeps") == std::string::npos);
+    CHECK(error_of(R"({"substeps": 0})") == "field 'substeps' must be in [1, 8], got 0");
+    CHECK(error_of(R"({"substeps": 9})") == "field 'substeps' must be in [1, 8], got 9");
+    CHECK(error_of(R"({"substeps": -1})").find("'substeps'") != std::string::npos);
+    CHECK(error_of(R"({"substeps": 2, "integrator": "explicit"})").find("'substeps'") != std::string::npos);
+}

@@ -118,6 +118,8 @@ TEST_CASE("each field at either end of its interval leaves a preset's world fini
         R"("rocks": {"count": 50, "min_radius": 10000, "max_radius": 10000})",
         R"("rocks": {"count": 50, "material": {"density": 100000, "restitution": 1, "drag_area": 10000}})",
         R"("fluids": [{"min": [-1000000, -1000000], "max": [1000000, 1000000], "density": 100000}])",
+        R"("substeps": 2)",
+        R"("substeps": 8)",
     };
     for (const char* preset : {"asteroids", "platformer"}) {
         for (const char* field : fields) {

@@ -1,6 +1,7 @@
 // Contact friction and rotation against closed forms: a box on a slope sticks or slides with
-// a = g·(sin θ − μ·cos θ), a ball rolls without slipping (ω·r = v), a pyramid of boxes stands,
-// a box of bouncing polygons gains no energy, a scene turned a quarter turn turns its results.
+// a = g·(sin θ − μ·cos θ) (in one step and in sub-steps), a ball rolls without slipping
+// (ω·r = v), a pyramid of boxes stands, a box of bouncing polygons gains no energy, a scene
+// turned a quarter turn turns its results.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
@@ -17,8 +18,9 @@ const vec2 downhill{-0.8f, -0.6f};
 const vec2 slope_normal{-0.6f, 0.8f};
 const real slope_angle = 0.6435011f;  // atan(3/4), rad
 
-world_config slope_world() {
+world_config slope_world(uint32_t substeps = 1) {
     world_config c;
+    c.substeps = substeps;
     c.gravity = {0, -9.81f};
     c.air_density = 0;
     c.boundary = boundary::open;
@@ -55,31 +57,36 @@ double energy(const world& w) {
 
 }  // namespace
 
-TEST_CASE("a box on a slope stays put when tan θ < μ", "[world][friction]") {
-    world w(slope_world(), 0);
-    add_slope(w, 0.9f);
-    const uint32_t id = add_box_on_slope(w, 0.9f);  // tan θ = 0.75 < 0.9
-    const vec2 start = w.find(id)->position;
-    for (int k = 0; k < 120; ++k) w.step({});
-    const body& b = *w.find(id);
-    CHECK((b.position - start).norm() < 0.01f);
-    CHECK(b.velocity.norm() < 0.01f);
+TEST_CASE("a box on a slope stays put when tan θ < μ", "[world][friction][substeps]") {
+    for (uint32_t substeps : {1u, 4u}) {
+        world w(slope_world(substeps), 0);
+        add_slope(w, 0.9f);
+        const uint32_t id = add_box_on_slope(w, 0.9f);  // tan θ = 0.75 < 0.9
+        const vec2 start = w.find(id)->position;
+        for (int k = 0; k < 120; ++k) w.step({});
+        const body& b = *w.find(id);
+        INFO("substeps " << substeps);
+        CHECK((b.position - start).norm() < 0.01f);
+        CHECK(b.velocity.norm() < 0.01f);
+    }
 }
 
-TEST_CASE("a box on a slope slides with a = g·(sin θ − μ·cos θ) when tan θ > μ", "[world][friction]") {
-    for (real mu : {0.1f, 0.3f, 0.5f}) {
-        world w(slope_world(), 0);
-        add_slope(w, mu);
-        const uint32_t id = add_box_on_slope(w, mu);
-        for (int k = 0; k < 30; ++k) w.step({});
-        const real v0 = along(w.find(id)->velocity);
-        for (int k = 0; k < 60; ++k) w.step({});
-        const real v1 = along(w.find(id)->velocity);
-        const double expected = 9.81 * (0.6 - mu * 0.8);
-        INFO("mu " << mu);
-        CHECK((v1 - v0) / 1.0 == Approx(expected).epsilon(0.01));
-        // It slides, it does not tumble.
-        CHECK(std::abs(w.find(id)->angular_velocity) < 0.01f);
+TEST_CASE("a box on a slope slides with a = g·(sin θ − μ·cos θ) when tan θ > μ", "[world][friction][substeps]") {
+    for (uint32_t substeps : {1u, 4u}) {
+        for (real mu : {0.1f, 0.3f, 0.5f}) {
+            world w(slope_world(substeps), 0);
+            add_slope(w, mu);
+            const uint32_t id = add_box_on_slope(w, mu);
+            for (int k = 0; k < 30; ++k) w.step({});
+            const real v0 = along(w.find(id)->velocity);
+            for (int k = 0; k < 60; ++k) w.step({});
+            const real v1 = along(w.find(id)->velocity);
+            const double expected = 9.81 * (0.6 - mu * 0.8);
+            INFO("mu " << mu << ", substeps " << substeps);
+            CHECK((v1 - v0) / 1.0 == Approx(expected).epsilon(0.01));
+            // It slides, it does not tumble.
+            CHECK(std::abs(w.find(id)->angular_velocity) < 0.01f);
+        }
     }
 }
 
@@ -102,7 +109,10 @@ TEST_CASE("a ball on a slope with friction ends up rolling: ω·r = v", "[world]
 }
 
 TEST_CASE("a 10-level pyramid of boxes stands for 10 s", "[world][friction]") {
-    world w(pyramid_preset(10), 1);
+    // The one-step solver (the preset sub-steps: tests/world/substep_tests.cpp).
+    world_config c = pyramid_preset(10);
+    c.substeps = 1;
+    world w(c, 1);
     REQUIRE(w.bodies().size() == 55 + 1);
     const body& top = w.bodies().back();
     const uint32_t top_id = top.id;
