@@ -65,3 +65,31 @@ TEST_CASE("the stall clock runs while output waits unwritten and restarts at eac
     CHECK_FALSE(out.next());
     CHECK(out.stalled_ns(900) == 0);
 }
+
+TEST_CASE("take_all gives every waiting frame in order, the snapshot last, for one gathered write", "[net]") {
+    bounded_output out(8);
+    out.put_snapshot_frame(std::vector<uint8_t>{1, 1}, 10);
+    CHECK(out.push_control({7}, 11));
+    out.put_snapshot_frame(std::vector<uint8_t>{2, 2}, 12);  // replaces the first, never written
+    CHECK(out.push_control({8}, 13));
+    std::vector<std::vector<uint8_t>> frames;
+    for (std::span<const uint8_t> frame : out.take_all()) frames.emplace_back(frame.begin(), frame.end());
+    CHECK(frames == std::vector<std::vector<uint8_t>>{{7}, {8}, {2, 2}});
+    CHECK(out.push_control({9}, 14));  // the limit counts frames waiting, not frames being written
+    CHECK(out.stalled_ns(20) == 10);   // nothing written yet: waiting since 10
+    out.written(30);
+    CHECK(out.stalled_ns(40) == 10);  // {9} still waits: progress at 30
+    CHECK(out.take_all().size() == 1);
+    out.written(50);
+    CHECK(out.take_all().empty());
+    CHECK(out.stalled_ns(60) == 0);
+}
+
+TEST_CASE("take_all leaves out a close's empty last word and drains", "[net]") {
+    bounded_output out(8);
+    CHECK(out.push_control({1}, 0));
+    out.put_snapshot_frame(std::vector<uint8_t>{9}, 0);
+    out.keep_only({});
+    CHECK(out.take_all().empty());
+    CHECK(out.stalled_ns(100) == 0);
+}
