@@ -44,6 +44,24 @@ std::optional<std::span<const uint8_t>> bounded_output::next() {
     return std::nullopt;
 }
 
+const std::vector<std::span<const uint8_t>>& bounded_output::take_all() {
+    batch_.clear();
+    controls_writing_.clear();
+    while (!control_.empty()) {
+        controls_writing_.push_back(std::move(control_.front()));
+        control_.pop_front();
+    }
+    for (const protocol::frame_bytes& frame : controls_writing_)
+        if (!frame.empty()) batch_.emplace_back(frame);
+    if (snapshot_pending_) {
+        std::swap(snapshot_next_, snapshot_writing_);
+        snapshot_pending_ = false;
+        batch_.emplace_back(snapshot_writing_);
+    }
+    if (batch_.empty()) waiting_since_ns_ = 0;
+    return batch_;
+}
+
 void bounded_output::written(int64_t now_ns) {
     waiting_since_ns_ = waiting() ? now_ns : 0;
 }

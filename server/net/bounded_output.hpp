@@ -31,7 +31,12 @@ public:
     // The next bytes to write (control frames first, in order, then the snapshot), valid until
     // the next call; empty bytes stand for nothing to write. Nothing: the output is drained.
     [[nodiscard]] std::optional<std::span<const uint8_t>> next();
-    // The bytes next() gave were written: progress, so the stall clock starts again if more waits.
+    // Every frame waiting, in the same order (control frames, then the snapshot), for one
+    // gathered write; valid until the next take_all() or next(). Frames with no bytes (a close
+    // without a last word) are left out. Empty: the output is drained.
+    [[nodiscard]] const std::vector<std::span<const uint8_t>>& take_all();
+    // The bytes next() or take_all() gave were written: progress, so the stall clock starts
+    // again if more waits.
     void written(int64_t now_ns);
     // Nanoseconds output has waited without a byte written (0 when nothing waits).
     [[nodiscard]] int64_t stalled_ns(int64_t now_ns) const {
@@ -45,7 +50,9 @@ private:
     std::size_t max_control_frames_;
     std::deque<protocol::frame_bytes> control_;  // in order, bounded
     protocol::frame_bytes control_writing_;
-    std::vector<uint8_t> snapshot_next_;  // newest snapshot not yet being written
+    std::vector<protocol::frame_bytes> controls_writing_;  // take_all()'s control frames
+    std::vector<std::span<const uint8_t>> batch_;          // take_all()'s result
+    std::vector<uint8_t> snapshot_next_;                   // newest snapshot not yet being written
     std::vector<uint8_t> snapshot_writing_;
     bool snapshot_pending_ = false;
     int64_t waiting_since_ns_ = 0;  // when output began to wait unwritten; 0 = nothing waits

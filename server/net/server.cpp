@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -128,7 +129,8 @@ boost::asio::awaitable<void> server::accept_loop() {
         }
         accept_backoff_.succeeded();
         auto s = std::make_shared<session>(std::move(socket), *this, match_, next_session_id_++);
-        sessions_.emplace(s->id(), s);
+        sessions_.push_back(s);
+        ++open_sessions_;
         process_.connections_peak = std::max<uint64_t>(process_.connections_peak, open_connections());
         s->start();
         match_.connect(*s);  // after start(), so that a refused client reads why
@@ -148,10 +150,29 @@ boost::asio::awaitable<void> server::tick_loop() {
 }
 
 void server::read_sessions() {
-    reading_.clear();
-    for (auto& [id, s] : sessions_) reading_.push_back(s);
-    for (auto& s : reading_) s->read_available(read_buffer_);
-    reading_.clear();
+    // By index: a session that closes while it reads leaves a null (on_gone), and none is added.
+    reading_sessions_ = true;
+    for (size_t i = 0; i < sessions_.size(); ++i)
+        if (session* s = sessions_[i].get()) s->read_available(read_buffer_);
+    reading_sessions_ = false;
+    if (!gone_.empty()) {
+        std::erase(sessions_, nullptr);
+        gone_.clear();
+    }
+}
+
+void server::request_flush(std::shared_ptr<session> s) {
+    to_flush_.push_back(std::move(s));
+    if (flush_posted_) return;
+    flush_posted_ = true;
+    boost::asio::post(io_, [this] { flush_sessions(); });
+}
+
+void server::flush_sessions() {
+    flush_posted_ = false;
+    flushing_.swap(to_flush_);
+    for (auto& s : flushing_) s->flush();
+    flushing_.clear();
 }
 
 void server::run_due_ticks() {
@@ -179,8 +200,8 @@ void server::run_due_ticks() {
 void server::check_stalled_sessions(int64_t now) {
     last_watchdog_ns_ = now;
     std::vector<std::shared_ptr<session>> stalled;
-    for (auto& [id, s] : sessions_)
-        if (!s->closing() && s->stalled_ns(now) > options_.stall_timeout_ns) stalled.push_back(s);
+    for (auto& s : sessions_)
+        if (s && !s->closing() && s->stalled_ns(now) > options_.stall_timeout_ns) stalled.push_back(s);
     for (auto& s : stalled)
         match_.reject(*s, {protocol::RejectCode::slow_consumer, "no progress writing to the client"});
 }
@@ -223,8 +244,15 @@ ops::server_metrics server::metrics_snapshot() const {
 }
 
 void server::on_gone(session& s) {
-    sessions_.erase(s.id());
-    if (stopping_ && sessions_.empty() && other_open_ == 0) finish();
+    const auto it = std::find_if(sessions_.begin(), sessions_.end(), [&](const auto& p) { return p.get() == &s; });
+    if (it != sessions_.end()) {
+        --open_sessions_;
+        if (reading_sessions_)
+            gone_.push_back(std::move(*it));  // alive until read_sessions() ends: it may be reading
+        else
+            sessions_.erase(it);
+    }
+    if (stopping_ && open_sessions_ == 0 && other_open_ == 0) finish();
 }
 
 void server::transport_opened() {
@@ -234,7 +262,7 @@ void server::transport_opened() {
 
 void server::transport_closed() {
     if (other_open_ > 0) --other_open_;
-    if (stopping_ && sessions_.empty() && other_open_ == 0) finish();
+    if (stopping_ && open_sessions_ == 0 && other_open_ == 0) finish();
 }
 
 void server::count_peer_opened() {
@@ -252,9 +280,13 @@ void server::count_in(size_t bytes) {
 }
 
 void server::count_out(size_t bytes) {
+    count_out(bytes, 1);
+}
+
+void server::count_out(size_t bytes, size_t messages) {
     process_.bytes_out += bytes;
     window_traffic_.bytes_out += bytes;
-    ++process_.messages_out;
+    process_.messages_out += messages;
 }
 
 void server::shutdown(const std::string& reason) {
@@ -266,7 +298,7 @@ void server::shutdown(const std::string& reason) {
     tick_timer_.cancel();
     stop_timer_.cancel();
     match_.shut_down(reason);  // Bye to every connection
-    if (sessions_.empty() && other_open_ == 0) {
+    if (open_sessions_ == 0 && other_open_ == 0) {
         finish();
         return;
     }

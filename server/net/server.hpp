@@ -6,9 +6,9 @@
 #include <boost/asio.hpp>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "server/auth/join_token.hpp"
 #include "server/match/match.hpp"
@@ -79,7 +79,7 @@ public:
     void transport_opened();
     void transport_closed();
     // Client connections of every transport now.
-    uint64_t open_connections() const { return sessions_.size() + peers_open_ + other_open_; }
+    uint64_t open_connections() const { return open_sessions_ + peers_open_ + other_open_; }
     // The figures /metrics shows.
     ops::server_metrics metrics_snapshot() const;
     // The process's counters now.
@@ -87,6 +87,10 @@ public:
     // True while the tick loop ran a tick within `window_ns`: /healthz and the Agones pings.
     bool ticking(int64_t window_ns = 1'000'000'000) const { return now_ns() - last_tick_ns_ < window_ns; }
     void count_out(size_t bytes);
+    void count_out(size_t bytes, size_t messages);
+    // A session has output to write: flushed after the handler running now (one post for all
+    // the sessions a tick or a read gave output), so a tick's sends do not lengthen the tick.
+    void request_flush(std::shared_ptr<session> s);
     uint32_t current_tick() const { return match_.state().tick(); }
     const server_options& options() const { return options_; }
     int64_t now_ns() const;
@@ -101,7 +105,8 @@ private:
     void warn_about_descriptor_limit() const;
     boost::asio::awaitable<void> tick_loop();
     void run_due_ticks();
-    void read_sessions();  // what every client sent since the last tick
+    void read_sessions();   // what every client sent since the last tick
+    void flush_sessions();  // writes what request_flush() asked for
     void check_stalled_sessions(int64_t now);
     void log_stats(int64_t now);
     void finish();
@@ -112,11 +117,18 @@ private:
     boost::asio::ip::tcp::acceptor acceptor_;
     ops::accept_backoff accept_backoff_;  // out of descriptors: pause accepting, log at a bounded rate
     uint16_t port_ = 0;
-    std::map<uint64_t, std::shared_ptr<session>> sessions_;  // by id, in accept order
-    uint64_t peers_open_ = 0;                                // connections of datagram transports
+    // In accept order. A session closed while read_sessions() runs leaves a null behind (its
+    // reference moves to gone_ until the loop ends), removed after the loop.
+    std::vector<std::shared_ptr<session>> sessions_;
+    std::vector<std::shared_ptr<session>> gone_;
+    bool reading_sessions_ = false;
+    size_t open_sessions_ = 0;
+    uint64_t peers_open_ = 0;  // connections of datagram transports
     uint64_t other_open_ = 0;  // connections of other stream transports (WebSocket): shutdown waits for them
-    std::vector<std::shared_ptr<session>> reading_;  // read_sessions()' copy: reading may close one
-    std::array<uint8_t, 64 * 1024> read_buffer_{};   // one for every session: one thread reads
+    std::vector<std::shared_ptr<session>> to_flush_;  // request_flush()'s, for the next flush_sessions()
+    std::vector<std::shared_ptr<session>> flushing_;  // flush_sessions()' copy: flushing may ask again
+    bool flush_posted_ = false;
+    std::array<uint8_t, 64 * 1024> read_buffer_{};  // one for every session: one thread reads
     uint64_t next_session_id_ = 1;
     tick_clock clock_;
     boost::asio::steady_timer tick_timer_;

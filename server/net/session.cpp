@@ -1,12 +1,18 @@
 #include "server/net/session.hpp"
 
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <system_error>
+
 #include "protocol/verify.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 
 namespace arena::net {
 
-using boost::asio::use_awaitable;
 using protocol::RejectCode;
 
 namespace {
@@ -21,48 +27,54 @@ std::string describe(const boost::asio::ip::tcp::socket& socket) {
 }  // namespace
 
 session::session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id)
-    : socket_(std::move(socket)),
+    : executor_(socket.get_executor()),
+      accepted_(std::move(socket)),
       owner_(owner),
       match_(match),
       id_(id),
-      peer_(describe(socket_)),
+      peer_(describe(accepted_)),
       output_(owner.options().max_control_frames),
-      wake_(socket_.get_executor()),
-      linger_(socket_.get_executor()) {}
+      linger_(executor_) {}
+
+session::~session() {
+    if (room_) (void)room_->release();  // fd_ is closed below, once
+    if (fd_ >= 0) ::close(fd_);
+}
 
 void session::start() {
     boost::system::error_code ec;
-    socket_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
-    socket_.set_option(boost::asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
-    socket_.non_blocking(true, ec);  // read_available must never block
-    auto self = shared_from_this();
-    // The writer's completion handler holds the session alive until it ends; the server holds
-    // it while it is open.
-    boost::asio::co_spawn(socket_.get_executor(), writer(), [self](std::exception_ptr) {});
+    accepted_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
+    accepted_.set_option(boost::asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
+    // Out of the epoll set (one epoll_ctl): with it, every input that arrives would wake the
+    // server, which reads only at ticks anyway. Every call below passes MSG_DONTWAIT.
+    fd_ = accepted_.release(ec);
+    if (ec) fd_ = -1;  // read_available reports the socket as failed
 }
 
 void session::read_available(std::span<uint8_t> buffer) {
     // What is there, without waiting: the server calls this once per tick for every session,
     // so one recv serves every input that arrived since the last tick (a client sends about one
-    // per tick), and no socket is armed in epoll per read. Asio's async_wait re-armed the socket
-    // with one epoll_ctl per input; the match consumes inputs only at ticks anyway.
+    // per tick). Waiting for readability cost an epoll_ctl per input (Asio re-arms the socket)
+    // and a wake-up per input; the match consumes inputs only at ticks anyway.
     while (!closing_) {
-        boost::system::error_code ec;
-        const size_t n = socket_.read_some(boost::asio::buffer(buffer.data(), buffer.size()), ec);
-        if (ec == boost::asio::error::would_block || ec == boost::asio::error::try_again) return;
-        if (ec) {
+        if (fd_ < 0) errno = EBADF;  // start() could not take the descriptor from Asio
+        const ssize_t n = fd_ < 0 ? -1 : ::recv(fd_, buffer.data(), buffer.size(), MSG_DONTWAIT);
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return;
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
             using kind = match::close_cause::kind;
-            const bool eof = ec == boost::asio::error::eof;
+            const bool eof = n == 0;
             const kind what =
                 !eof ? kind::socket_error : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
-            match_.disconnect(*this, {what, {}, eof ? std::string() : ec.message()});
+            match_.disconnect(*this, {what, {}, eof ? std::string() : std::system_category().message(errno)});
             close_now();
             return;
         }
-        owner_.count_in(n);
+        const auto got = static_cast<size_t>(n);
+        owner_.count_in(got);
         // Rates are measured in real time: after a stall of the server, what queued is read at once.
-        if (!take_frames(std::span<const uint8_t>(buffer.data(), n), owner_.now_ns())) return;
-        if (n < buffer.size()) return;  // the socket is drained: the next recv would find nothing
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.now_ns())) return;
+        if (got < buffer.size()) return;  // the socket is drained: the next recv would find nothing
     }
 }
 
@@ -90,53 +102,113 @@ bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
     return false;
 }
 
-boost::asio::awaitable<void> session::writer() {
-    try {
-        while (!closed_) {
-            if (auto bytes = output_.next()) {
-                if (!bytes->empty()) {
-                    co_await boost::asio::async_write(socket_, boost::asio::buffer(bytes->data(), bytes->size()),
-                                                      use_awaitable);
-                    owner_.count_out(bytes->size());
-                }
-                output_.written(owner_.now_ns());
-            } else if (closing_) {
-                close_now();
-                co_return;
-            } else {
-                wake_.expires_at(boost::asio::steady_timer::time_point::max());
-                boost::system::error_code ec;
-                co_await wake_.async_wait(boost::asio::redirect_error(use_awaitable, ec));
+void session::request_flush() {
+    if (flush_requested_ || waiting_for_room_ || closed_) return;
+    flush_requested_ = true;
+    owner_.request_flush(shared_from_this());
+}
+
+void session::flush() {
+    flush_requested_ = false;
+    if (closed_ || waiting_for_room_) return;
+    write_pending();
+}
+
+void session::write_pending() {
+    while (!closed_) {
+        if (writing_from_ == writing_.size()) {
+            const auto& batch = output_.take_all();
+            if (batch.empty()) {
+                if (closing_) close_now();  // the last word is out
+                return;
             }
+            writing_.clear();
+            writing_from_ = 0;
+            writing_bytes_ = 0;
+            for (std::span<const uint8_t> frame : batch) {
+                writing_.push_back({const_cast<uint8_t*>(frame.data()), frame.size()});
+                writing_bytes_ += frame.size();
+            }
+            writing_frames_ = batch.size();
         }
-    } catch (const boost::system::system_error& e) {
-        if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, e.code().message()});
-        close_now();
+        msghdr message{};
+        message.msg_iov = writing_.data() + writing_from_;
+        message.msg_iovlen = std::min<size_t>(writing_.size() - writing_from_, IOV_MAX);
+        const ssize_t n = ::sendmsg(fd_, &message, MSG_DONTWAIT | MSG_NOSIGNAL);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            wait_for_room();
+            return;
+        }
+        if (n < 0) {
+            if (!closing_)
+                match_.disconnect(*this,
+                                  {match::close_cause::kind::write_failed, {}, std::system_category().message(errno)});
+            close_now();
+            return;
+        }
+        // Skip what went out; a frame cut in two goes on from where the kernel stopped.
+        auto left = static_cast<size_t>(n);
+        while (writing_from_ < writing_.size() && left >= writing_[writing_from_].iov_len)
+            left -= writing_[writing_from_++].iov_len;
+        if (writing_from_ < writing_.size()) {
+            iovec& rest = writing_[writing_from_];
+            rest.iov_base = static_cast<uint8_t*>(rest.iov_base) + left;
+            rest.iov_len -= left;
+            continue;
+        }
+        owner_.count_out(writing_bytes_, writing_frames_);
+        output_.written(owner_.now_ns());
     }
+}
+
+void session::wait_for_room() {
+    // The kernel's send buffer is full: fd_ joins the epoll set until it has room again.
+    waiting_for_room_ = true;
+    boost::system::error_code ec;
+    room_.emplace(executor_);
+    room_->assign(fd_, ec);
+    if (ec) {
+        (void)room_->release();
+        room_.reset();
+        waiting_for_room_ = false;
+        if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
+        close_now();
+        return;
+    }
+    room_->async_wait(boost::asio::posix::stream_descriptor::wait_write,
+                      [self = shared_from_this()](const boost::system::error_code& e) {
+                          // Closed meanwhile (close_now released the descriptor): nothing to write.
+                          if (e == boost::asio::error::operation_aborted || self->closed_) return;
+                          self->waiting_for_room_ = false;
+                          (void)self->room_->release();
+                          self->room_.reset();
+                          self->write_pending();  // an error shows in the write
+                      });
 }
 
 void session::send(protocol::frame_bytes frame) {
     if (closing_) return;
     if (!output_.push_control(std::move(frame), owner_.now_ns())) {
         // Not from inside the match's call that sent this: the refusal goes through the match.
-        boost::asio::post(socket_.get_executor(), [self = shared_from_this()] {
+        boost::asio::post(executor_, [self = shared_from_this()] {
             self->match_.reject(*self, {RejectCode::slow_consumer, "too many messages waiting to be sent"});
         });
         return;
     }
-    wake_.cancel();
+    request_flush();
 }
 
 void session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
     output_.put_snapshot(snapshot, ack_sequence, owner_.now_ns());
-    wake_.cancel();
+    request_flush();
 }
 
 void session::send_snapshot_frame(std::span<const uint8_t> frame) {
     if (closing_) return;
     output_.put_snapshot_frame(frame, owner_.now_ns());
-    wake_.cancel();
+    request_flush();
 }
 
 void session::close(RejectCode code, std::string_view reason) {
@@ -156,7 +228,7 @@ void session::close_after(protocol::frame_bytes last_frame) {
     closing_ = true;
     // Whatever was waiting is dropped: only the last word goes out, then the socket closes.
     output_.keep_only(std::move(last_frame));
-    wake_.cancel();
+    request_flush();
     auto self = shared_from_this();
     linger_.expires_after(std::chrono::nanoseconds(owner_.options().close_grace_ns));
     linger_.async_wait([self](const boost::system::error_code& e) {
@@ -168,10 +240,15 @@ void session::close_now() {
     if (closed_) return;
     closed_ = true;
     closing_ = true;
-    boost::system::error_code ec;
-    socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ec);
-    socket_.close(ec);
-    wake_.cancel();
+    if (room_) {
+        (void)room_->release();  // leaves the epoll set; the wait ends as aborted
+        room_.reset();
+    }
+    if (fd_ >= 0) {
+        ::shutdown(fd_, SHUT_RDWR);
+        ::close(fd_);
+        fd_ = -1;
+    }
     linger_.cancel();
     owner_.on_gone(*this);
 }

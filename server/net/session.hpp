@@ -1,14 +1,23 @@
 #pragma once
 // One TCP client: read once per tick (read_available: frames, verifies, hands each message to
-// the match), and a writer coroutine, the only one that writes to the socket. Output is bounded
+// the match), and written from the server's flush after the handler that queued output (a tick,
+// a read, a close), with one gathered write of everything waiting. Output is bounded
 // (bounded_output.hpp): control messages queue up to a limit, and a snapshot waiting to be sent
 // is replaced by a newer one, so a client that does not read costs at most one snapshot and a
 // few small frames.
+//
+// The socket is out of the io_context's epoll set: nothing waits for its input (the server
+// polls it once per tick), so an input arriving does not wake the server. It joins the set
+// only while a write waits for room in the kernel's send buffer.
+#include <sys/uio.h>
+
 #include <array>
 #include <boost/asio.hpp>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "protocol/framing.hpp"
 #include "server/match/connection.hpp"
@@ -22,6 +31,9 @@ class server;
 class session : public match::connection, public std::enable_shared_from_this<session> {
 public:
     session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id);
+    ~session() override;
+    session(const session&) = delete;
+    session& operator=(const session&) = delete;
 
     void start();
     // Reads what the socket holds now into `buffer` (shared: one thread) and hands every
@@ -40,24 +52,42 @@ public:
     int64_t stalled_ns(int64_t now_ns) const { return output_.stalled_ns(now_ns); }
     uint64_t id() const { return id_; }
     bool closing() const { return closing_; }
+    // Writes what waits, as far as the socket takes it now; the server calls it after the
+    // handler that queued output (see request_flush).
+    void flush();
 
 private:
     // Frames `data` and hands each verified message to the match; false: stop reading.
     bool take_frames(std::span<const uint8_t> data, int64_t arrival_ns);
-    boost::asio::awaitable<void> writer();
+    // Asks the server for a flush of this session, unless one is asked for or a write waits.
+    void request_flush();
+    // Writes batches until the output is drained, the socket is full (then waits for room) or
+    // the write fails.
+    void write_pending();
+    void wait_for_room();
     void close_after(protocol::frame_bytes last_frame);
     void close_now();
 
-    boost::asio::ip::tcp::socket socket_;
+    boost::asio::any_io_executor executor_;
+    boost::asio::ip::tcp::socket accepted_;  // until start(): then its descriptor is fd_
+    int fd_ = -1;
     server& owner_;
     match::match& match_;
     uint64_t id_;
     std::string peer_;
     protocol::frame_reader reader_;
     bounded_output output_;
+    // The batch being written: the rest of take_all()'s frames, as the kernel wants them.
+    std::vector<iovec> writing_;
+    size_t writing_from_ = 0;  // first entry of writing_ not yet written in full
+    size_t writing_bytes_ = 0;
+    size_t writing_frames_ = 0;
+    bool flush_requested_ = false;
+    bool waiting_for_room_ = false;
+    // fd_ in the epoll set while a write waits for room (released, not closed, afterwards).
+    std::optional<boost::asio::posix::stream_descriptor> room_;
     bool closing_ = false;
     bool closed_ = false;
-    boost::asio::steady_timer wake_;    // wakes the writer
     boost::asio::steady_timer linger_;  // bounds how long a closing session may flush
 };
 
