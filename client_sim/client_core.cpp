@@ -190,6 +190,7 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
             m.interval_prediction_error_m.add(*c.error);
         }
         m.input_lag_ticks.add(static_cast<double>(predictor_->last_sequence() - snapshot.ack_sequence));
+        pacer_.on_snapshot(snapshot.ack_sequence, snapshot.extra_inputs_waiting);
         for (const float e : predictor_->take_shot_errors()) m.own_shot_error_m.add(e);
     }
     behavior_->observe(bodies, entity_id_);
@@ -319,7 +320,10 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
     if (phase_ != phase::playing || close_after_flush_) return;
     ++ticks_played_;
     if (params_.mode != misbehavior::none && ticks_played_ > misbehave_after_ticks && misbehave()) return;
-    send_input(behavior_->next({predictor_->body()}));
+    if (pacer_.send_this_tick(predictor_->last_sequence() + 1))
+        send_input(behavior_->next({predictor_->body()}));
+    else
+        ++shared_.metrics().inputs_left_out;
     if (phase_ == phase::ended) return;
     // One Ping a second, cores spread over the second so the Pongs do not come in a burst.
     if ((tick + params_.index) % tick_rate_ == 0) append_ping(shared_.encoder(), now, pending_);

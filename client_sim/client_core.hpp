@@ -21,6 +21,7 @@
 
 #include "client_sim/behavior.hpp"
 #include "client_sim/client_shared.hpp"
+#include "client_sim/input_pacer.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
@@ -178,6 +179,7 @@ private:
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;
+    input_pacer pacer_;  // leaves out an input when the server keeps too many waiting
     bool fault_done_ = false;
 
     time_ns launched_at_ = 0;

@@ -52,7 +52,9 @@ struct fleet_metrics {
     std::uint64_t bytes_out = 0;
     std::uint64_t snapshots = 0;
     std::uint64_t inputs_sent = 0;
-    std::uint64_t ticks_skipped = 0;         // shared ticker ticks dropped because the process lagged
+    std::uint64_t inputs_left_out =
+        0;                            // ticks without an input: the server held more than one waiting (input_pacer.hpp)
+    std::uint64_t ticks_skipped = 0;  // shared ticker ticks dropped because the process lagged
     std::uint64_t predictions_exact = 0;     // prediction errors exactly 0 (well-behaved bots)
     std::uint64_t snapshot_bytes = 0;        // frames of every snapshot received, bytes
     std::uint64_t view_bodies = 0;           // bodies those snapshots held

@@ -107,6 +107,7 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
     r.bytes_out = m.bytes_out;
     r.snapshots = m.snapshots;
     r.inputs_sent = m.inputs_sent;
+    r.inputs_left_out = m.inputs_left_out;
     r.ticks_skipped = m.ticks_skipped;
     r.snapshot_bytes = m.snapshot_bytes;
     r.view_bodies = m.view_bodies;
@@ -185,10 +186,11 @@ std::string summary_table(const final_report& r) {
         100.0 * r.own_shot_exact_share, static_cast<unsigned long long>(shots.exact + shots.with_error),
         shot_error != nullptr ? shot_error->p99 : 0.0, static_cast<unsigned long long>(shots.unconfirmed),
         static_cast<unsigned long long>(shots.unpredicted));
-    out += format("totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu\n",
-                  static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
-                  static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
-                  static_cast<unsigned long long>(r.ticks_skipped));
+    out += format(
+        "totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu inputs_left_out=%llu\n",
+        static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
+        static_cast<unsigned long long>(r.snapshots), static_cast<unsigned long long>(r.inputs_sent),
+        static_cast<unsigned long long>(r.ticks_skipped), static_cast<unsigned long long>(r.inputs_left_out));
     out += format(
         "snapshots: %llu deltas (%llu did not decode), %.2f bytes per body in view (frames), "
         "%.2f (delta payload)\n",
@@ -243,6 +245,7 @@ nlohmann::json to_json(const final_report& r) {
           {"snapshots", r.snapshots},
           {"inputs", r.inputs_sent},
           {"ticks_skipped", r.ticks_skipped},
+          {"inputs_left_out", r.inputs_left_out},
           {"snapshot_bytes", r.snapshot_bytes},
           {"view_bodies", r.view_bodies},
           {"delta_snapshots", r.delta_snapshots},

@@ -29,6 +29,7 @@ struct final_report {
     std::uint64_t bytes_out = 0;
     std::uint64_t snapshots = 0;
     std::uint64_t inputs_sent = 0;
+    std::uint64_t inputs_left_out = 0;  // input_pacer.hpp
     std::uint64_t ticks_skipped = 0;
     double prediction_exact_share = 0;  // [0, 1] of the measured predictions, bit-exact
     // Own shots (Asteroids, own_shots.hpp): how the predicted ones matched the server's, and the

@@ -146,7 +146,8 @@ result<snapshot_view> decode_snapshot(const Message& message) {
     const auto* t = message.payload_as<Snapshot>();
     if (t == nullptr) return result<snapshot_view>::failure(unexpected(message, Payload::Snapshot));
     snapshot_view view{
-        t->tick(), t->ack_sequence(), {}, t->baseline_tick(), {}, false, t->shapes(), t->shape_vertices(), t, {}};
+        t->tick(), t->ack_sequence(),        {}, t->baseline_tick(), {}, false, t->shapes(), t->shape_vertices(), t,
+        {},        t->extra_inputs_waiting()};
     if (const auto* delta = t->delta(); delta != nullptr) {
         view.is_delta = true;
         view.delta = {delta->data(), delta->size()};

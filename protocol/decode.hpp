@@ -39,6 +39,8 @@ struct snapshot_view {
     // Where the bullets among `shapes` came from (README.md, "Shot origins"), every number
     // finite; empty when absent.
     std::span<const ShotOrigin> shot_origins;
+    // This client's inputs waiting for the world beyond the first (README.md, "Input pacing").
+    std::uint16_t extra_inputs_waiting = 0;
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 

@@ -76,11 +76,12 @@ flatbuffers::Offset<Snapshot> create_snapshot(flatbuffers::FlatBufferBuilder& fb
                                               flatbuffers::Offset<flatbuffers::Vector<const BodyState*>> bodies,
                                               std::uint32_t baseline_tick,
                                               flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> delta,
-                                              const shape_list* shapes, const game_list* game) {
+                                              const shape_list* shapes, const game_list* game,
+                                              std::uint16_t extra_inputs_waiting = 0) {
     const shape_offsets described = add_shapes(fbb, shapes);
     const game_offsets g = add_game(fbb, game);
     return CreateSnapshot(fbb, tick, ack_sequence, bodies, baseline_tick, delta, described.shapes, described.vertices,
-                          g.players, g.name_ids, g.names, g.events, described.origins);
+                          g.players, g.name_ids, g.names, g.events, described.origins, extra_inputs_waiting);
 }
 
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,
@@ -133,11 +134,12 @@ std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fb
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
                                                     std::span<const std::uint8_t> delta, const shape_list* shapes,
-                                                    const game_list* game) {
+                                                    const game_list* game, std::uint16_t extra_inputs_waiting) {
     fbb.Clear();
     const auto bytes = fbb.CreateVector(delta.data(), delta.size());
-    finish_message(fbb, Payload::Snapshot,
-                   create_snapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes, shapes, game).Union());
+    finish_message(
+        fbb, Payload::Snapshot,
+        create_snapshot(fbb, tick, ack_sequence, 0, baseline_tick, bytes, shapes, game, extra_inputs_waiting).Union());
     return finished(fbb);
 }
 

@@ -35,11 +35,12 @@ std::span<const std::uint8_t> encode_snapshot(flatbuffers::FlatBufferBuilder& fb
 
 // Clears fbb and encodes one client's delta Snapshot frame (empty bodies; `delta` holds the
 // codec's bytes, protocol/delta/codec.hpp). baseline_tick 0: encoded without a baseline.
+// extra_inputs_waiting: the client's inputs waiting for the world beyond the first.
 std::span<const std::uint8_t> encode_delta_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick,
                                                     std::uint32_t ack_sequence, std::uint32_t baseline_tick,
                                                     std::span<const std::uint8_t> delta,
-                                                    const shape_list* shapes = nullptr,
-                                                    const game_list* game = nullptr);
+                                                    const shape_list* shapes = nullptr, const game_list* game = nullptr,
+                                                    std::uint16_t extra_inputs_waiting = 0);
 
 // Encodes a tick's snapshot once; each client's copy differs only in ack_sequence, which is
 // patched into the copy in place. Cost per client: one memcpy of the frame.

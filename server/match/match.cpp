@@ -512,8 +512,12 @@ void match::send_snapshots() {
     for (auto it = players_.begin(); it != players_.end();) {
         const world::player_id id = it->first;
         player& p = it->second;
-        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase)
+        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase) {
+            const size_t waiting = p.inputs.waiting();
+            p.snapshots.extra_inputs_waiting =
+                static_cast<uint16_t>(waiting > 1 ? std::min<size_t>(waiting - 1, 65535) : 0);
             send_snapshot(p, p.body_id, p.inputs.last_consumed_sequence());
+        }
         it = players_.upper_bound(id);
     }
     // Spectators, BodyState clients all, on the interval's ticks, after the players.

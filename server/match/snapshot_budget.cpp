@@ -35,7 +35,8 @@ std::span<const uint8_t> snapshot_fanout::budgeted_frame(snapshot_client& client
         shapes_.clear();
         trial_shapes_.update(tick_, bodies, sent_, sent_ack, false,
                              [&](uint32_t i) { describe_body(shapes_, bodies[i]); });
-        frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game);
+        frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game,
+                                                client.extra_inputs_waiting);
         built = n;
         return frame.size() <= client.budget;
     };

@@ -142,8 +142,8 @@ std::span<const uint8_t> snapshot_fanout::delta_frame(snapshot_client& client, w
     describe_view(client, sent_ack, false);
     client.views.record(tick_, view_);
 
-    const auto frame =
-        protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game);
+    const auto frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_,
+                                                       game, client.extra_inputs_waiting);
     ++(baseline_tick != 0 ? counters_.delta_frames : counters_.keyframes);
     counters_.delta_bytes += frame.size();
     counters_.delta_payload_bytes += delta_bytes_.size();

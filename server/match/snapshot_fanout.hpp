@@ -48,14 +48,15 @@ struct fanout_config {
 struct snapshot_client {
     explicit snapshot_client(tick_ring ring, bool delta, size_t budget = 0)
         : delta(delta), budget(budget), views(ring) {}
-    bool delta = false;               // the client decodes delta snapshots
-    size_t budget = 0;                // delta clients: bytes a snapshot frame may take; 0: no limit
-    uint32_t acked_tick = 0;          // its newest Input.snapshot_ack; 0: none
-    uint32_t game_held = 0;           // the game's version it holds (game_feed.hpp): the most its acks brought
-    client_views views;               // what its recent snapshots held
-    shape_tracker shapes;             // which shapes it holds
-    uint32_t shared_tick = 0;         // BodyState clients of a whole-world view: the tick of its last frame
-    priority_accumulator priorities;  // with a budget: which bodies go in next
+    bool delta = false;                 // the client decodes delta snapshots
+    size_t budget = 0;                  // delta clients: bytes a snapshot frame may take; 0: no limit
+    uint32_t acked_tick = 0;            // its newest Input.snapshot_ack; 0: none
+    uint32_t game_held = 0;             // the game's version it holds (game_feed.hpp): the most its acks brought
+    uint16_t extra_inputs_waiting = 0;  // its inputs waiting beyond the first, told in its next delta frame
+    client_views views;                 // what its recent snapshots held
+    shape_tracker shapes;               // which shapes it holds
+    uint32_t shared_tick = 0;           // BodyState clients of a whole-world view: the tick of its last frame
+    priority_accumulator priorities;    // with a budget: which bodies go in next
 
     // An Input's snapshot_ack (inputs come in order: the newest). A snapshot still kept adds
     // what it brought of the game; an older one changes nothing, so an ack that comes back
