@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# make bench-loss: Arena under packet loss, TCP and UDP side by side. Each run gets a network
-# namespace of its own (ip netns, as root) whose loopback drops a random share of the packets
-# leaving it (nftables: `numgen random mod 1000 < N drop`; netem does not exist on these
-# kernels). Latency is added on the bots' side (arena-bots --simulate-latency, UDP only: a TCP
-# socket cannot be delayed from user space without reordering its bytes). One table.
+# make bench-loss: Arena under packet loss and added latency, TCP and UDP side by side. Each run
+# gets two network namespaces of its own (ip netns, as root), the server's and the bots',
+# joined by a point-to-point link (bench/link_delay.cpp, arena-link-delay) that holds every
+# packet LATENCY ms each way in the kernel's packet path, so TCP's and ENet's retransmission
+# timers see the longer round trip as they would on a real path (netem does not exist on these
+# kernels, and a delay inside the bots would hide it from TCP). Each namespace drops a random
+# share of the packets leaving it (nftables: `numgen random mod 1000 < N drop`); every packet
+# leaves one of them once. One table.
 # Env: LOSS_PERCENT ("0 1 2 5 10"), LOSS_LATENCY_MS ("0 50 100"), LOSS_SECONDS (8),
 #      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp udp2"; udp2 is UDP with each snapshot sent
 #      twice, a tick apart: --udp-snapshot-copies 2), LOSS_WORK (a folder that keeps each run's
@@ -21,40 +24,68 @@ transports=${LOSS_TRANSPORTS:-tcp udp udp2}
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
 keep=${LOSS_WORK:-}
 if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-loss.XXXXXX); fi
-ns=arena-loss-$$
-cleanup() { ip netns del "$ns" 2>/dev/null || true; [ -n "$keep" ] || rm -rf "$work"; }
+server_ns=arena-loss-server-$$
+bots_ns=arena-loss-bots-$$
+server_address=10.77.0.1
+bots_address=10.77.0.2
+link=""
+drop_namespaces() {
+  if [ -n "$link" ]; then kill -TERM "$link" 2>/dev/null || true; wait "$link" 2>/dev/null || true; link=""; fi
+  ip netns del "$server_ns" 2>/dev/null || true
+  ip netns del "$bots_ns" 2>/dev/null || true
+}
+cleanup() { drop_namespaces; [ -n "$keep" ] || rm -rf "$work"; }
 trap cleanup EXIT
 
-# run TRANSPORT LOSS_PERMILLE LATENCY_MS LABEL: one server and its bots in a fresh namespace.
+# connect LOSS_PERMILLE LATENCY_MS LABEL: the two namespaces, their link and their loss.
+connect() {
+  local permille=$1 latency=$2 label=$3 ns address
+  drop_namespaces
+  for ns in "$server_ns" "$bots_ns"; do
+    ip netns add "$ns"
+    ip -n "$ns" link set lo up
+    ip -n "$ns" tuntap add dev arena0 mode tun
+    ip netns exec "$ns" nft add table inet arena_loss
+    ip netns exec "$ns" nft "add chain inet arena_loss in { type filter hook input priority 0; }"
+    if [ "$permille" -gt 0 ]; then
+      ip netns exec "$ns" nft "add rule inet arena_loss in numgen random mod 1000 < $permille counter drop"
+    fi
+  done
+  ip -n "$server_ns" addr add "$server_address/30" dev arena0
+  ip -n "$bots_ns" addr add "$bots_address/30" dev arena0
+  : > "$work/$label.link"
+  ip netns exec "$server_ns" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" \
+    > "$work/$label.link" 2>&1 &
+  link=$!
+  for _ in $(seq 100); do grep -q "^link-delay ready" "$work/$label.link" && break; sleep 0.05; done
+  grep -q "^link-delay ready" "$work/$label.link" || { echo "arena-link-delay did not start" >&2; cat "$work/$label.link" >&2; return 1; }
+  ip -n "$server_ns" link set arena0 up
+  ip -n "$bots_ns" link set arena0 up
+}
+
+# run TRANSPORT LOSS_PERMILLE LATENCY_MS LABEL: one server and its bots, each in its namespace.
 run() {
-  local transport=$1 permille=$2 latency=$3 label=$4
+  local transport=$1 permille=$2 latency=$3 label=$4 ns
   local -a copies=()
   if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
-  ip netns del "$ns" 2>/dev/null || true
-  ip netns add "$ns"
-  ip netns exec "$ns" ip link set lo up
-  ip netns exec "$ns" nft add table inet arena_loss
-  ip netns exec "$ns" nft "add chain inet arena_loss out { type filter hook output priority 0; }"
-  if [ "$permille" -gt 0 ]; then
-    ip netns exec "$ns" nft "add rule inet arena_loss out numgen random mod 1000 < $permille drop"
-  fi
+  connect "$permille" "$latency" "$label"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
-  ip netns exec "$ns" "$bin/arena-server" --port 0 --udp-port 0 --max-players "$bots" --duration $((seconds + 30)) \
-    "${copies[@]}" --stats-json "$work/$label.stats.json" > "$work/$label.out" 2> "$work/$label.log" &
+  ip netns exec "$server_ns" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
+    --max-players "$bots" --duration $((seconds + 30)) "${copies[@]}" --stats-json "$work/$label.stats.json" \
+    > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   local prefix="listening on"; [ "$transport" = udp ] && prefix="udp listening on"
   for _ in $(seq 100); do
     port=$(sed -n "s/^$prefix .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true); [ -n "$port" ] && break; sleep 0.1
   done
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
-  local -a delay=()
-  [ "$latency" -gt 0 ] && delay=(--simulate-latency "$latency")
-  ip netns exec "$ns" "$bin/arena-bots" --transport "$transport" --port "$port" --bots "$bots" \
-    --duration "$seconds" --connect-rate 100 --seed 1 --quiet "${delay[@]}" --json "$work/$label.json" \
+  ip netns exec "$bots_ns" "$bin/arena-bots" --transport "$transport" --host "$server_address" --port "$port" \
+    --bots "$bots" --duration "$seconds" --connect-rate 100 --seed 1 --quiet --json "$work/$label.json" \
     > "$work/$label.bots.out" 2>&1 || true
   kill -TERM "$server" 2>/dev/null || true
   wait "$server" || true
-  ip netns del "$ns"
+  for ns in "$server_ns" "$bots_ns"; do ip netns exec "$ns" nft list chain inet arena_loss in; done > "$work/$label.nft"
+  drop_namespaces
 }
 
 labels=()
@@ -62,8 +93,6 @@ for latency in $latencies; do
   for loss in $losses; do
     permille=$(awk -v p="$loss" 'BEGIN { printf "%d", p * 10 }')
     for transport in $transports; do
-      # TCP cannot get the bots' simulated latency: only its 0 ms rows are measured.
-      [ "$transport" = tcp ] && [ "$latency" -gt 0 ] && continue
       label="$transport-$loss-$latency"
       run "$transport" "$permille" "$latency" "$label"
       labels+=("$label")
