@@ -60,10 +60,19 @@ void world::step(const tick_inputs& inputs) {
     scratch_.laps = timer_.now_ns ? &laps : nullptr;
     apply_inputs(inputs);
     laps.lap(step_phase::inputs);
-    if (config_.substeps > 1) {
+    if (config_.substeps > 1)
         step_substepped(laps);
-        return;
-    }
+    else
+        step_one_pass(laps);
+    note_supported();
+    laps.lap(step_phase::correction);
+    laps.finish();
+    scratch_.laps = nullptr;
+    ++tick_;
+}
+
+// Velocities, detection, one solve, positions, then a position correction.
+void world::step_one_pass(phase_laps& laps) {
     const body_extent extent = integrate_velocities();
     laps.lap(step_phase::forces_velocities);
     detect_collisions(extent);
@@ -78,11 +87,6 @@ void world::step(const tick_inputs& inputs) {
     laps.lap(step_phase::positions);
     solver_.correct_positions(bodies_, contacts_, config_);
     wrap_touched_bodies();
-    note_supported();
-    laps.lap(step_phase::correction);
-    laps.finish();
-    scratch_.laps = nullptr;
-    ++tick_;
 }
 
 // Box2D v3's soft step: forces, detection, then the sub-steps (soft_solver.hpp), which integrate
@@ -103,11 +107,6 @@ void world::step_substepped(phase_laps& laps) {
         wrap_position(b, config_);
     }
     laps.lap(step_phase::positions);
-    note_supported();
-    laps.lap(step_phase::correction);
-    laps.finish();
-    scratch_.laps = nullptr;
-    ++tick_;
 }
 
 void world::apply_inputs(const tick_inputs& inputs) {

@@ -97,7 +97,9 @@ public:
 
 private:
     void apply_inputs(const tick_inputs& inputs);
-    void step_substepped(phase_laps& laps);  // the rest of step() when config_.substeps > 1
+    // The middle of step(), from forces to the position pass: one of them per step.
+    void step_one_pass(phase_laps& laps);    // config_.substeps == 1
+    void step_substepped(phase_laps& laps);  // config_.substeps > 1
     body_extent integrate_velocities();      // forces, velocities (and explicit Euler's positions)
     body_extent accumulate_all_forces();     // forces only (the sub-stepped solver integrates)
     void detect_collisions(const body_extent& extent);
