@@ -11,7 +11,8 @@
 #      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp udp2"; udp2 is UDP with each snapshot sent
 #      twice, a tick apart: --udp-snapshot-copies 2), LOSS_WORK (a folder that keeps each run's
 #      bots' --json LABEL.json and server's --stats-json LABEL.stats.json, LABEL being
-#      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed).
+#      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed), LOSS_NICE (-10: the nice
+#      value of the link, the server and the bots).
 set -euo pipefail
 bin=${1:-build/bin}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -24,6 +25,9 @@ transports=${LOSS_TRANSPORTS:-tcp udp udp2}
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
 keep=${LOSS_WORK:-}
 if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-loss.XXXXXX); fi
+# The link, the server and the bots run ahead of anything else on a shared machine (a compiler
+# at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
+priority=${LOSS_NICE:--10}
 server_ns=arena-loss-server-$$
 bots_ns=arena-loss-bots-$$
 server_address=10.77.0.1
@@ -54,7 +58,7 @@ connect() {
   ip -n "$server_ns" addr add "$server_address/30" dev arena0
   ip -n "$bots_ns" addr add "$bots_address/30" dev arena0
   : > "$work/$label.link"
-  ip netns exec "$server_ns" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" \
+  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" \
     > "$work/$label.link" 2>&1 &
   link=$!
   for _ in $(seq 100); do grep -q "^link-delay ready" "$work/$label.link" && break; sleep 0.05; done
@@ -70,7 +74,7 @@ run() {
   if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
   connect "$permille" "$latency" "$label"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
-  ip netns exec "$server_ns" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
+  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --max-players "$bots" --duration $((seconds + 30)) "${copies[@]}" --stats-json "$work/$label.stats.json" \
     > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
@@ -79,7 +83,7 @@ run() {
     port=$(sed -n "s/^$prefix .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true); [ -n "$port" ] && break; sleep 0.1
   done
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
-  ip netns exec "$bots_ns" "$bin/arena-bots" --transport "$transport" --host "$server_address" --port "$port" \
+  ip netns exec "$bots_ns" nice -n "$priority" "$bin/arena-bots" --transport "$transport" --host "$server_address" --port "$port" \
     --bots "$bots" --duration "$seconds" --connect-rate 100 --seed 1 --quiet --json "$work/$label.json" \
     > "$work/$label.bots.out" 2>&1 || true
   kill -TERM "$server" 2>/dev/null || true

@@ -7,16 +7,9 @@ be 0 with and without loss. At 5 % loss some Inputs were lost on the wire, so th
 some inputs from later Inputs' lists (`inputs_recovered` > 0): the redundant inputs did it.
 Every bot joined and kept receiving snapshots. Prints one line per run and exits 1 on a failure.
 """
-import json
 import sys
 
-
-def load(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        return {"error": str(e)}
+from run_reports import load
 
 
 def main():

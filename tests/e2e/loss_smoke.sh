@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# make test's short bench-loss: bench/loss.sh's own machinery (a network namespace of its own
-# whose loopback drops a random share of the packets, nftables) for a few seconds over UDP at
+# make test's short bench-loss: bench/loss.sh's own machinery (network namespaces of its own
+# that drop a random share of the packets they receive, nftables) for a few seconds over UDP at
 # 0 % and 5 % loss, then loss_check.py on what the server and the bots reported: the redundant
 # inputs close every gap the loss opens. Needs root (ip netns, nft), as CI runs: without it the
 # test fails and says so, it never skips. Usage: loss_smoke.sh BIN_DIR SOURCE_DIR
