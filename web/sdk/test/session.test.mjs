@@ -43,6 +43,7 @@ test('the WebAssembly session answers every call of a native session over a real
     }
   }
   assert.equal(session.ended(), false, session.error());
+  assert.equal(recorded.dropped, 2, 'two snapshots lost on the way');
   assert.ok(snapshots > 150 && deltas > 100 && predicted > 100 && inputs > 500,
             `snapshots ${snapshots}, with a delta ack ${deltas}, predicted ${predicted}, inputs ${inputs}`);
   assert.ok(session.shapes().length > 0, 'the view holds shapes');
