@@ -1,10 +1,14 @@
 // The browser SDK's session core (web/sdk/core/session.*), natively: after a respawn of its
-// own player the session predicts the new ship, as the bots' client core does.
+// own player the session predicts the new ship, and it paces its inputs, as the bots' client
+// core does.
 #include <catch2/catch.hpp>
 #include <vector>
 
 #include "protocol/config_hash.hpp"
+#include "protocol/decode.hpp"
+#include "protocol/delta/codec.hpp"
 #include "protocol/snapshot.hpp"
+#include "protocol/verify.hpp"
 #include "server/config/config_json.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
@@ -54,6 +58,26 @@ protocol::BodyState ship(std::uint32_t id, std::uint32_t owner, float x) {
     return protocol::BodyState(id, owner, x, 20.0f, 0.0f, 0.0f, 0.0f, 0.0f);
 }
 
+// A delta snapshot of the own ship alone, encoded in full (no baseline), acknowledging input
+// `ack`, that says `extra_waiting` inputs wait beyond the first.
+std::vector<std::uint8_t> delta_snapshot(std::uint32_t tick, std::uint32_t ack, std::uint16_t extra_waiting) {
+    const std::vector<protocol::delta::quantized_body> view{
+        protocol::delta::quantize(ship(first_ship, own_player, 10.0f))};
+    const std::vector<std::uint8_t> bytes = protocol::delta::encode(view, std::nullopt, {0, 60});
+    flatbuffers::FlatBufferBuilder fbb;
+    const auto frame = protocol::encode_delta_snapshot(fbb, tick, ack, 0, bytes, nullptr, nullptr, extra_waiting);
+    return {frame.begin(), frame.end()};
+}
+
+// The sequence an Input frame carries.
+std::uint32_t sequence_of(std::span<const std::uint8_t> frame) {
+    const auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
+    REQUIRE(verified);
+    const protocol::Input* input = verified.value->payload_as_Input();
+    REQUIRE(input != nullptr);
+    return input->sequence();
+}
+
 }  // namespace
 
 TEST_CASE("after its own respawn the session predicts the new ship, and other players' respawns change nothing",
@@ -84,5 +108,54 @@ TEST_CASE("after its own respawn the session predicts the new ship, and other pl
     REQUIRE(s.feed(snapshot(112, 4, {ship(12, own_player, 51.0f), ship(13, 4, 80.0f)},
                             {respawn(1, 4, 13), respawn(2, own_player, 12)})) == protocol::Payload::Snapshot);
     CHECK(s.entity_id() == 12);
+    CHECK(s.error().empty());
+}
+
+TEST_CASE("after two delta snapshots in a row with extra inputs waiting the session leaves one tick's input out",
+          "[sdk][client][pacing]") {
+    sdk::session s;
+    (void)s.hello("probe", "");
+    REQUIRE(s.feed(welcome()) == protocol::Payload::Welcome);
+    std::uint32_t tick = 101;
+    std::uint32_t sent = 0;  // the newest sequence an Input carried
+    const auto send = [&]() {
+        const auto frame = s.input(1.0f, 0.0f, 0);
+        if (frame.empty()) return false;
+        CHECK(sequence_of(frame) == sent + 1);  // consecutive, across a left-out tick too
+        sent = sequence_of(frame);
+        return true;
+    };
+    for (int i = 0; i < 3; ++i) REQUIRE(send());
+
+    // None waiting beyond the first, for many snapshots: every tick's input is sent.
+    for (int i = 0; i < 10; ++i) {
+        REQUIRE(s.feed(delta_snapshot(tick += 3, sent - 1, 0)) == protocol::Payload::Snapshot);
+        for (int t = 0; t < 3; ++t) REQUIRE(send());
+    }
+    CHECK(s.inputs_left_out() == 0);
+
+    // One snapshot with extra waiting may be a burst: nothing is left out yet.
+    REQUIRE(s.feed(delta_snapshot(tick += 3, sent - 1, 2)) == protocol::Payload::Snapshot);
+    for (int t = 0; t < 3; ++t) REQUIRE(send());
+    CHECK(s.inputs_left_out() == 0);
+
+    // The second in a row: the next tick's input is left out, neither sent nor predicted.
+    REQUIRE(s.feed(delta_snapshot(tick += 3, sent - 1, 1)) == protocol::Payload::Snapshot);
+    REQUIRE(s.predicted() != nullptr);
+    const auto before = s.predicted()->position;
+    CHECK_FALSE(send());
+    CHECK(s.out().empty());
+    CHECK(s.inputs_left_out() == 1);
+    CHECK(s.last_sequence() == sent);
+    CHECK(s.predicted()->position == before);
+    // The ticks after it are sent again, carrying the next sequences.
+    for (int t = 0; t < 3; ++t) REQUIRE(send());
+    CHECK((s.predicted()->position - before).norm() > 0.0f);
+
+    // A snapshot acknowledging an input from before the gap still shows the old queue: it
+    // does not count towards the next leaving out.
+    for (int i = 0; i < 2; ++i) REQUIRE(s.feed(delta_snapshot(tick += 3, sent - 3, 1)) == protocol::Payload::Snapshot);
+    CHECK(send());
+    CHECK(s.inputs_left_out() == 1);
     CHECK(s.error().empty());
 }

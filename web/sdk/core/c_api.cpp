@@ -130,7 +130,8 @@ ARENA_API const char* arena_error(const client* c) {
     return c->session.error().c_str();
 }
 
-// Outgoing frames: each call returns the frame's size; arena_out points at it.
+// Outgoing frames: each call returns the frame's size; arena_out points at it. arena_input
+// returns 0 for a tick the input pacing leaves out (session.hpp): there is nothing to send.
 ARENA_API std::uint32_t arena_hello(client* c, const char* name, const char* token) {
     return out_size(c->session.hello(name, token));
 }
@@ -188,6 +189,11 @@ ARENA_API std::uint32_t arena_delta_ack(const client* c) {
 }
 ARENA_API const char* arena_delta_problem(const client* c) {
     return c->session.delta_problem().c_str();
+}
+// Ticks whose input the pacing left out (arena_input returned 0 for them: nothing to send). A
+// double: a count JavaScript reads exactly.
+ARENA_API double arena_inputs_left_out(const client* c) {
+    return static_cast<double>(c->session.inputs_left_out());
 }
 
 // The newest view: arena_view_count BodyStates of 32 bytes (id, owner, x, y, vx, vy, angle,

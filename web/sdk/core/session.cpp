@@ -173,6 +173,8 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
     if (c.problem == bots::predictor::ack_problem::ahead)
         return fail("Snapshot: ack_sequence acknowledges an input never sent");
     prediction_error_ = c.error;
+    // Only delta snapshots carry the count; a full one says 0.
+    pacer_.on_snapshot(snapshot.ack_sequence, snapshot.extra_inputs_waiting);
     return protocol::Payload::Snapshot;
 }
 
@@ -186,8 +188,9 @@ std::span<const std::uint8_t> session::hello(std::string_view name, std::string_
 
 std::span<const std::uint8_t> session::input(float thrust, float turn, std::uint8_t buttons) {
     if (!predictor_ || ended_ || spectator_) return {};
-    const world::player_input in{thrust, turn, buttons};
     const std::uint32_t sequence = predictor_->last_sequence() + 1;
+    if (!pacer_.send_this_tick(sequence)) return keep({});
+    const world::player_input in{thrust, turn, buttons};
     predictor_->on_input(sequence, in);
     return keep(protocol::encode_input({sequence, thrust, turn, buttons, delta_ack(), {}}));
 }

@@ -4,7 +4,8 @@
 // sends (the npm FlatBuffers runtime has no verifier), does the Welcome checks, decodes delta
 // snapshots with the server's codec, keeps the shapes of the bodies in view, and predicts the
 // player's own body with the server's world code (client_sim/prediction.hpp). It encodes what
-// the client sends: Hello, Input (numbered, with the delta acknowledgement), Ping and Bye.
+// the client sends: Hello, Input (numbered, with the delta acknowledgement), Ping and Bye, and
+// paces the Inputs as the bots do (client_sim/input_pacer.hpp).
 //
 // Unlike client_sim's client_core (a bot: its inputs come from a behaviour, its figures go to
 // a fleet), the inputs here come from the game, and the decoded view is kept for it to draw.
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "client_sim/input_pacer.hpp"
 #include "client_sim/prediction.hpp"
 #include "protocol/arena_generated.h"
 #include "protocol/delta/receiver.hpp"
@@ -42,7 +44,10 @@ public:
     std::span<const std::uint8_t> hello(std::string_view name, std::string_view token);
     // Numbers the input, predicts it (once a snapshot placed the body) and encodes it with
     // the newest delta view decoded as the acknowledgement. Empty before the Welcome, and for
-    // a spectator (the server refuses its Inputs).
+    // a spectator (the server refuses its Inputs). Empty too for a tick the pacing leaves out
+    // (protocol/README.md, "Input pacing"): the server kept too many of this player's inputs
+    // waiting, so this tick's is neither numbered, predicted nor sent; the next one carries
+    // the next sequence.
     std::span<const std::uint8_t> input(float thrust, float turn, std::uint8_t buttons);
     std::span<const std::uint8_t> ping(std::uint64_t client_time);
     std::span<const std::uint8_t> bye(std::string_view reason);
@@ -77,6 +82,8 @@ public:
     // dropped, so the server sends a full one next); empty when it did. A server bug.
     [[nodiscard]] const std::string& delta_problem() const { return delta_problem_; }
     [[nodiscard]] std::uint64_t delta_failures() const { return delta_failures_; }
+    // Ticks whose input the pacing left out (input() returned an empty frame for them).
+    [[nodiscard]] std::uint64_t inputs_left_out() const { return pacer_.left_out(); }
 
 private:
     protocol::Payload fail(std::string reason);
@@ -100,6 +107,7 @@ private:
     std::optional<world::world_config> config_;
     std::optional<bots::predictor> predictor_;
     std::optional<protocol::delta::receiver> deltas_;
+    bots::input_pacer pacer_;  // fed by each decoded snapshot, asked by each input()
 
     std::uint32_t view_tick_ = 0;
     std::uint32_t view_ack_ = 0;

@@ -38,6 +38,7 @@ export interface CoreModule {
   _arena_last_sequence(session: number): number;
   _arena_delta_ack(session: number): number;
   _arena_delta_problem(session: number): number;
+  _arena_inputs_left_out(session: number): number;
   _arena_view(session: number): number;
   _arena_view_count(session: number): number;
   _arena_shapes(session: number): number;

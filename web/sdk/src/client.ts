@@ -155,6 +155,9 @@ export class ArenaClient {
       ++this.ticksSent;
       const { thrust, turn, buttons } = this.controls;
       const frame = this.session.input(thrust, turn, buttons);
+      // Empty when there is nothing to send this tick: a tick the input pacing leaves out (the
+      // server kept too many inputs waiting; the next one carries the next sequence). The
+      // tick is spent all the same, so that the queue at the server is one shorter.
       if (frame.length > 0) this.socket.send(frame);
     }
     if (now - this.lastPing >= 1000) {
@@ -180,6 +183,12 @@ export class ArenaClient {
       bodies.push(ownBody);
     }
     return { bodies, own: ownBody, statics: this.welcome.statics, serverTime: sampled.serverTime, extrapolated: sampled.extrapolated };
+  }
+
+  /** Ticks whose input was left out because the server kept too many waiting (input
+   *  pacing, protocol/README.md): a figure for a game's network display. */
+  get inputsLeftOut(): number {
+    return this.session.inputsLeftOut;
   }
 
   /** Says Bye and closes. */

@@ -54,8 +54,10 @@ export class CoreSession {
   hello(name: string, token: string): Uint8Array {
     return this.out(this.core.withStrings([name, token], (n, t) => this.core.module._arena_hello(this.handle, n, t)));
   }
-  /** Numbers and predicts the input; an empty frame before the Welcome, after the end, and
-   *  for a spectator. */
+  /** Numbers and predicts the input; an empty frame before the Welcome, after the end, for
+   *  a spectator, and for a tick the input pacing leaves out (inputsLeftOut counts those):
+   *  the server kept too many inputs waiting, so this tick's is not sent (protocol/README.md,
+   *  "Input pacing"); the next one carries the next sequence. Send only non-empty frames. */
   input(thrust: number, turn: number, buttons: number): Uint8Array {
     return this.out(this.core.module._arena_input(this.handle, thrust, turn, buttons));
   }
@@ -95,6 +97,10 @@ export class CoreSession {
   }
   get deltaAck(): number {
     return this.core.module._arena_delta_ack(this.handle);
+  }
+  /** Ticks whose input the pacing left out (input() returned an empty frame for them). */
+  get inputsLeftOut(): number {
+    return this.core.module._arena_inputs_left_out(this.handle);
   }
   /** Why the newest snapshot's delta did not decode (a server bug); '' when it did. */
   deltaProblem(): string {

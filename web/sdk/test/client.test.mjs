@@ -1,6 +1,7 @@
 // connect() over a fake socket that plays a real match's frames (recorded from the native
 // build): the Hello and every Input the SDK sends equal the native session's bytes and read
-// back through the generated TypeScript to the controls given (frames round trip); events
+// back through the generated TypeScript to the controls given (frames round trip), and a tick
+// whose input the pacing leaves out sends nothing and counts in inputsLeftOut; events
 // come; stateAt draws the own body predicted and the others interpolated; close() says Bye.
 // A spectator (spectate: true) sends Hello.spectator and no Input, and draws with no own ship.
 import assert from 'node:assert/strict';
@@ -33,7 +34,7 @@ test('a game client over a fake socket sends what the native session sent and dr
   assert.equal(socket.binaryType, 'arraybuffer');
   socket.onopen({});
 
-  let ticks = 0, welcomeAt = 0, inputs = 0, pings = 0;
+  let ticks = 0, welcomeAt = 0, inputs = 0, pings = 0, leftOut = 0;
   for (const call of recorded.calls) {
     if (call.hello) {
       assert.deepEqual(socket.sent.shift(), fromBase64(call.out), 'the Hello');
@@ -48,15 +49,21 @@ test('a game client over a fake socket sends what the native session sent and dr
       client.pump(now);
       const sent = socket.sent.splice(0);
       const own = sent.filter((f) => sdk.readMessage(f).payloadType() === sdk.Payload.Input);
+      pings += sent.length - own.length;
+      if (call.out === '') {
+        // A tick the input pacing left out (the native session's too): nothing is sent.
+        assert.equal(own.length, 0, `no Input on a tick left out (tick ${ticks})`);
+        assert.equal(client.inputsLeftOut, ++leftOut);
+        continue;
+      }
       assert.equal(own.length, 1, `one Input per tick (tick ${ticks})`);
       assert.deepEqual(own[0], fromBase64(call.out), `Input ${ticks}: the native session's bytes`);
       const read = sdk.readMessage(own[0]).payload(new protocol.Input());
-      assert.equal(read.sequence(), ticks);
+      assert.equal(read.sequence(), ticks - leftOut, 'the next sequence, across a tick left out');
       assert.equal(read.thrust(), Math.fround(call.input[0]));
       assert.equal(read.turn(), Math.fround(call.input[1]));
       assert.equal(read.buttons(), call.input[2]);
       ++inputs;
-      pings += sent.length - own.length;
     }
     if (call.feed && call.type === sdk.Payload.Snapshot && events.snapshot > 10) {
       const state = client.stateAt(now);
@@ -69,6 +76,7 @@ test('a game client over a fake socket sends what the native session sent and dr
   assert.equal(events.welcome, 1);
   assert.ok(events.snapshot > 150, `${events.snapshot} snapshots`);
   assert.ok(inputs > 500);
+  assert.ok(leftOut >= 1 && client.inputsLeftOut === leftOut, `${leftOut} inputs left out`);
   assert.ok(Math.abs(pings - ticks / 60) <= 1, `${pings} Pings in ${ticks} ticks: one a second`);
   assert.ok(errors.length > 100 && errors.every((e) => e < 2), 'prediction errors measured, small');
   assert.deepEqual(events.bye, []);
