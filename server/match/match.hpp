@@ -211,7 +211,7 @@ private:
     void send_snapshot(Reader& r, world::body_id own, uint32_t ack);
     // Into game_list_: what `r`'s snapshot at this tick carries of the game.
     template <class Reader>
-    const protocol::game_list* game_for(Reader& r, uint32_t& through);
+    const protocol::game_list* game_for(const Reader& r, uint32_t& through);
     uint32_t snapshot_interval() const;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 

@@ -249,6 +249,26 @@ struct datagram_client : match::connection {
     size_t budget = datagram;
 };
 
+// An Asteroids match at the tests' rates.
+match::match asteroids_match(uint32_t max_players = match::match_config{}.max_players) {
+    match::match_config config;
+    config.tick_rate = tick_rate;
+    config.snapshot_rate = tick_rate / interval;
+    config.max_players = max_players;
+    world::world_config world = world::asteroids_preset();
+    world.rules = world::game_rules::asteroids;
+    return match::match(config, world);
+}
+
+// Joins every client, asking for delta snapshots, as NAME_PREFIX followed by its index.
+void join_each(match::match& g, std::vector<datagram_client>& clients, const std::string& name_prefix) {
+    for (size_t k = 0; k < clients.size(); ++k) {
+        std::string name = name_prefix;
+        name += std::to_string(k);
+        REQUIRE(match_test::join(g, clients[k], {protocol::protocol_version, name, "", true}) != 0);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("the match takes each connection's budget: datagram clients trimmed, stream clients whole",
@@ -272,18 +292,9 @@ TEST_CASE("the match takes each connection's budget: datagram clients trimmed, s
 
 TEST_CASE("32 players' names and lines go over a few datagrams, each frame within the budget",
           "[match][budget][game]") {
-    match::match_config config;
-    config.tick_rate = tick_rate;
-    config.snapshot_rate = tick_rate / interval;
-    config.max_players = 32;
-    world::world_config world = world::asteroids_preset();
-    world.rules = world::game_rules::asteroids;
-    match::match g(config, world);
+    match::match g = asteroids_match(32);
     std::vector<datagram_client> clients(32);
-    for (size_t k = 0; k < clients.size(); ++k) {
-        const std::string name = "pilot-with-a-long-name-" + std::to_string(k);
-        REQUIRE(match_test::join(g, clients[k], {protocol::protocol_version, name, "", true}) != 0);
-    }
+    join_each(g, clients, "pilot-with-a-long-name-");
     // Every client acknowledges what it decoded but client 0, which hears nothing back.
     std::vector<uint32_t> sequence(clients.size(), 0), acked(clients.size(), 0);
     std::vector<std::set<uint32_t>> names(clients.size());
@@ -312,17 +323,9 @@ TEST_CASE("32 players' names and lines go over a few datagrams, each frame withi
 
 TEST_CASE("a client whose snapshots were lost for longer than the baselines last is not sent the game again",
           "[match][budget][game]") {
-    match::match_config config;
-    config.tick_rate = tick_rate;
-    config.snapshot_rate = tick_rate / interval;
-    world::world_config world = world::asteroids_preset();
-    world.rules = world::game_rules::asteroids;
-    match::match g(config, world);
+    match::match g = asteroids_match();
     std::vector<datagram_client> clients(4);
-    for (size_t k = 0; k < clients.size(); ++k) {
-        const std::string name = "player-" + std::to_string(k);
-        REQUIRE(match_test::join(g, clients[k], {protocol::protocol_version, name, "", true}) != 0);
-    }
+    join_each(g, clients, "player-");
     uint32_t sequence = 0, acked = 0;
     size_t read = 0;
     // Names carried by the snapshots client 0 decodes from `from` on.
