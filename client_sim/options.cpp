@@ -39,7 +39,8 @@ int parse_options(int argc, char** argv, options& out) {
     app.add_option("--token", out.token, "Hello.token of every bot (a server with --token-secret wants one)");
     std::string token_secret_path;
     app.add_option("--token-secret", token_secret_path,
-                   "mint each bot a signed token naming it from this secret file (as arena-token does)");
+                   "mint each bot a signed token naming it from this secret file (as arena-token does); over UDP, "
+                   "each bot also puts the server's connect key in ENet's connect data");
     app.add_option("--join-timeout", out.join_timeout, "seconds a bot waits for its Welcome")
         ->check(CLI::Range(0.1, 3600.0))
         ->capture_default_str();

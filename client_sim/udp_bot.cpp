@@ -73,7 +73,9 @@ boost::asio::awaitable<void> udp_bot::run() {
     }
     address.host = htonl(endpoint.address().to_v4().to_uint());
     address.port = endpoint.port();
-    peer_ = enet_host_connect(host_, &address, 2, 0);
+    // A server with a token secret wants its current connect key in ENet's connect data.
+    const auto& secret = fleet_.opts().token_secret;
+    peer_ = enet_host_connect(host_, &address, 2, secret ? secret->connect_key(auth::unix_now()) : 0);
     const int fd = ::dup(host_->socket);
     if (peer_ == nullptr || fd < 0) {
         if (fd >= 0) ::close(fd);

@@ -1,4 +1,5 @@
-// arena-token: mints a signed join token for arena-server --token-secret.
+// arena-token: mints a signed join token for arena-server --token-secret, or prints the
+// server's current UDP connect key (--udp-connect-key) for clients that join over UDP.
 #include <cstdio>
 #include <variant>
 
@@ -19,16 +20,27 @@ int main(int argc, char** argv) {
     CLI::App app{"arena-token: mint a signed join token", "arena-token"};
     std::string secret_path, name;
     int64_t ttl = 3600;
+    bool connect_key = false;
     app.add_option("--secret", secret_path, "the server's secret file (at least 32 bytes)")->required();
-    app.add_option("--name", name,
-                   "the player the token names: at most 64 bytes of UTF-8 without control characters, as the server "
-                   "requires")
-        ->required();
-    app.add_option("--ttl", ttl, "seconds until the token expires (default 3600)")
-        ->check(arena::cli::bounded(ttl_bound));
+    auto* name_option = app.add_option(
+        "--name", name,
+        "the player the token names: at most 64 bytes of UTF-8 without control characters, as the server "
+        "requires (required unless --udp-connect-key)");
+    auto* ttl_option = app.add_option("--ttl", ttl, "seconds until the token expires (default 3600)")
+                           ->check(arena::cli::bounded(ttl_bound));
+    app.add_flag("--udp-connect-key", connect_key,
+                 "print, instead of a token, the server's current UDP connect key: a decimal number a UDP client "
+                 "puts in ENet's connect data (enet_host_connect's last argument); the server accepts it for 5 "
+                 "to 10 minutes")
+        ->excludes(name_option)
+        ->excludes(ttl_option);
     if (int code = arena::cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
+    if (!connect_key && name_option->count() == 0) {
+        std::fprintf(stderr, "arena-token: --name is required (see --help)\n");
+        return 2;
+    }
     // A token for a name the server refuses would only fail later, at the player's Hello.
-    if (auto problem = arena::protocol::player_name_problem(name)) {
+    if (auto problem = connect_key ? std::nullopt : arena::protocol::player_name_problem(name)) {
         std::fprintf(stderr, "arena-token: --name: %s\n", problem->c_str());
         return 2;
     }
@@ -37,6 +49,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "arena-token: %s\n", e->reason.c_str());
         return 2;
     }
-    std::printf("%s\n", std::get<arena::auth::token_secret>(secret).mint(name, arena::auth::unix_now() + ttl).c_str());
+    const auto& signer = std::get<arena::auth::token_secret>(secret);
+    if (connect_key) {
+        std::printf("%u\n", signer.connect_key(arena::auth::unix_now()));
+        return 0;
+    }
+    std::printf("%s\n", signer.mint(name, arena::auth::unix_now() + ttl).c_str());
     return 0;
 }

@@ -92,6 +92,18 @@ std::variant<token_claims, token_error> token_secret::verify(std::string_view to
     return claims;
 }
 
+std::uint32_t token_secret::connect_key(int64_t unix_seconds) const {
+    // Floor division, so that the window before the epoch is -1, not 0 twice.
+    const int64_t window = unix_seconds / connect_key_window_s - (unix_seconds % connect_key_window_s < 0 ? 1 : 0);
+    // Domain separation: every token body starts with "v1." and this message does not, so a
+    // key is never part of a token's MAC, nor this MAC a token's.
+    const std::string digest = mac("udp-connect.v1." + std::to_string(window));
+    const auto byte = [&](size_t i) {
+        return static_cast<std::uint32_t>(static_cast<unsigned char>(digest[i]));
+    };
+    return byte(0) << 24 | byte(1) << 16 | byte(2) << 8 | byte(3);
+}
+
 int64_t unix_now() {
     return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
         .count();

@@ -4,6 +4,11 @@
 // the server's secret file, base64url. The token names the player: a server with a secret
 // admits only Hellos whose token it signed and that have not expired, and knows who they are.
 // Tokens travel in clear over TCP (see SECURITY.md).
+//
+// The same secret derives the UDP connect key: ENet's CONNECT command carries 32 bits of user
+// data, too few for a token, so a client puts there the first 4 bytes (big endian) of the HMAC
+// of "udp-connect.v1.<window>", window = Unix seconds / 300. The UDP transport refuses a connect
+// without the key of the current or the previous window before ENet gives it a peer slot.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -11,6 +16,9 @@
 #include <variant>
 
 namespace arena::auth {
+
+// Seconds per UDP connect key window: a key is accepted for 5 to 10 minutes.
+inline constexpr int64_t connect_key_window_s = 300;
 
 struct token_claims {
     std::string name;     // the player the token was minted for
@@ -31,6 +39,8 @@ public:
     std::string mint(std::string_view name, int64_t expires) const;
     // The claims of a valid, unexpired token, or why it is refused.
     std::variant<token_claims, token_error> verify(std::string_view token, int64_t now) const;
+    // The UDP connect key of the window holding `unix_seconds` (see above).
+    std::uint32_t connect_key(int64_t unix_seconds) const;
 
 private:
     explicit token_secret(std::string key) : key_(std::move(key)) {}

@@ -13,6 +13,7 @@ constexpr std::array<reason_words, udp_refusal_reasons> reasons = {{
     {"shape", "not an ENet connect, or one too short to answer"},
     {"rate", "over its address's connect rate"},
     {"peer_limit", "every peer slot is taken"},
+    {"connect_key", "a connect without this server's connect key"},
 }};
 
 }  // namespace

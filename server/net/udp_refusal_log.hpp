@@ -14,13 +14,14 @@
 namespace arena::net {
 
 enum class udp_refusal : std::uint8_t {
-    shape,       // too short, a connect too small to answer, or not a connect though to no peer
-    rate,        // a connect over its address's rate
-    peer_limit,  // a connect while every ENet peer slot is taken
+    shape,        // too short, a connect too small to answer, or not a connect though to no peer
+    rate,         // a connect over its address's rate
+    peer_limit,   // a connect while every ENet peer slot is taken
+    connect_key,  // a connect without the server's connect key (only with a token secret)
 };
-inline constexpr std::size_t udp_refusal_reasons = 3;
+inline constexpr std::size_t udp_refusal_reasons = 4;
 
-// The key of a reason in the counters ("shape", "rate", "peer_limit").
+// The key of a reason in the counters ("shape", "rate", "peer_limit", "connect_key").
 [[nodiscard]] std::string_view udp_refusal_key(udp_refusal why);
 
 class udp_refusal_log {

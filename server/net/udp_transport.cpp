@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "server/auth/join_token.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 
@@ -32,6 +33,10 @@ constexpr int max_events_per_service = 4096;
 udp_transport::udp_transport(boost::asio::io_context& io, server& owner, udp_options options)
     : io_(io), owner_(owner), options_(options), readable_(io), timer_(io), gate_(options.gate) {
     if (enet_initialize() != 0) throw std::runtime_error("udp: cannot initialise ENet");
+    if (const auto& secret = owner.options().token_secret) {
+        gate_.require_connect_key([secret = *secret](int64_t unix_seconds) { return secret.connect_key(unix_seconds); },
+                                  auth::connect_key_window_s);
+    }
 }
 
 udp_transport::~udp_transport() {
@@ -133,6 +138,7 @@ void udp_transport::flush_now() {
 }
 
 void udp_transport::service() {
+    if (gate_.requires_connect_key()) gate_.set_wall_clock(auth::unix_now());  // derives keys once per window
     ENetEvent event{};
     for (int i = 0; i < max_events_per_service; ++i) {
         servicing = this;
@@ -171,6 +177,8 @@ bool udp_transport::admit(ENetHost* host) {
             return refuse(udp_refusal::shape, address);
         case gate_verdict::refuse_rate:
             return refuse(udp_refusal::rate, address);
+        case gate_verdict::refuse_key:
+            return refuse(udp_refusal::connect_key, address);
         case gate_verdict::connect:
             break;
     }

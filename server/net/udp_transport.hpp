@@ -3,7 +3,8 @@
 // ENet's socket is watched by Asio (a readable wait on a duplicate of its descriptor); each
 // wake-up services ENet without blocking, and a short timer lets ENet resend and time out.
 // Before ENet reads a datagram, the connect gate (udp_connect_gate.hpp) refuses connects over
-// an address's rate and connect datagrams too small to be answered without amplification.
+// an address's rate and connect datagrams too small to be answered without amplification, and,
+// when the server has a token secret, connects without its current connect key.
 #include <enet/enet.h>
 
 #include <boost/asio.hpp>

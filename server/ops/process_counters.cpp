@@ -29,7 +29,8 @@ void report(const process_counters& c, match::figure_sink& out) {
     out.counters_by({"udp_refused", "arena_udp_refused_datagrams_total",
                      "UDP datagrams refused before ENet read them, by reason: shape (not a connect, or "
                      "too short to answer), rate (an address's connects over its rate), peer_limit (no "
-                     "free peer slot)."},
+                     "free peer slot), connect_key (a connect without the server's UDP connect key, with "
+                     "--token-secret)."},
                     "reason", c.udp_refused);
 }
 

@@ -5,8 +5,10 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <string>
+#include <variant>
 
 #include "common/run_command.hpp"
+#include "server/auth/join_token.hpp"
 
 using namespace arena::test;
 
@@ -53,4 +55,29 @@ TEST_CASE("arena-token refuses a --ttl that would wrap into an expired token", "
         CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);  // one line
     }
     CHECK(token("--secret " + secret.path + " --name ada --ttl 31536000").exit_code == 0);
+}
+
+TEST_CASE("arena-token --udp-connect-key prints the server's current connect key, in decimal", "[auth][cli][udp]") {
+    secret_file secret;
+    const auto key = token("--secret " + secret.path + " --udp-connect-key");
+    CHECK(key.exit_code == 0);
+    REQUIRE(!key.output.empty());
+    CHECK(key.output.back() == '\n');
+    const std::string digits = key.output.substr(0, key.output.size() - 1);
+    CHECK(!digits.empty());
+    CHECK(std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }));
+    // The key the server derives from the same secret now (or a moment ago, had the window
+    // just turned).
+    const auto server_secret = std::get<arena::auth::token_secret>(arena::auth::token_secret::load(secret.path));
+    const int64_t now = arena::auth::unix_now();
+    const std::uint64_t printed = std::stoull(digits);
+    CHECK((printed == server_secret.connect_key(now) || printed == server_secret.connect_key(now - 5)));
+    // It keys the server, it names nobody: no --name or --ttl beside it.
+    CHECK(token("--secret " + secret.path + " --udp-connect-key --name ada").exit_code == 2);
+    CHECK(token("--secret " + secret.path + " --udp-connect-key --ttl 60").exit_code == 2);
+    // Without it, a token as ever, and --name is still required.
+    CHECK(token("--secret " + secret.path + " --name ada").output.rfind("v1.", 0) == 0);
+    const auto no_name = token("--secret " + secret.path);
+    CHECK(no_name.exit_code == 2);
+    CHECK(no_name.output == "arena-token: --name is required (see --help)\n");
 }

@@ -53,3 +53,17 @@ TEST_CASE("a secret shorter than 32 bytes is refused", "[auth]") {
     CHECK(std::get<token_error>(short_secret).reason.find("32") != std::string::npos);
     CHECK(std::holds_alternative<token_error>(token_secret::load("/nonexistent/secret")));
 }
+
+TEST_CASE("the UDP connect key is the HMAC of its 300 s window's message, the same all window long", "[auth][udp]") {
+    const auto s = secret(key_a);
+    // Reference values: the first 4 bytes, big endian, of HMAC-SHA-256 keyed with 32 'a' of
+    // "udp-connect.v1.6000000" (and of ...5999999, and of ...-1), computed with Python's hmac.
+    const int64_t window_start = 6'000'000LL * connect_key_window_s;
+    CHECK(s.connect_key(window_start) == 3244867605u);
+    CHECK(s.connect_key(window_start + connect_key_window_s - 1) == 3244867605u);
+    CHECK(s.connect_key(window_start - 1) == 2062987443u);
+    CHECK(s.connect_key(-1) == 1497567035u);  // windows are floored, also before the epoch
+    CHECK(s.connect_key(window_start + connect_key_window_s) != s.connect_key(window_start));
+    // Another secret, another key.
+    CHECK(secret(key_b).connect_key(window_start) != s.connect_key(window_start));
+}

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "process.hpp"
 
@@ -13,19 +14,24 @@ namespace arena::test {
 
 // arena-server on loopback (the asteroids preset, seed 1, at most 30 s) with a second transport
 // on port 0 of `port_flag` ("--udp-port", "--http-port"), once it printed both its "listening
-// on" line and the second transport's ("udp listening on", "http listening on"). SIGTERM at
-// the end.
+// on" line and the second transport's ("udp listening on", "http listening on"), with `more`
+// flags after these. SIGTERM at the end.
 struct server_beside_tcp {
     child_process process;
     unsigned tcp_port = 0;
     unsigned second_port = 0;
 
     server_beside_tcp(const std::string& bin_dir, const temp_dir& dir, const std::string& port_flag,
-                      const std::string& port_line)
-        : process(bin_dir + "/arena-server",
-                  {"--bind", "127.0.0.1", "--port", "0", port_flag, "0", "--preset", "asteroids", "--seed", "1",
-                   "--duration", "30"},
-                  dir.file("server.log")) {
+                      const std::string& port_line, std::vector<std::string> more = {})
+        : process(
+              bin_dir + "/arena-server",
+              [&] {
+                  std::vector<std::string> args = {"--bind",   "127.0.0.1", "--port", "0", port_flag,    "0",
+                                                   "--preset", "asteroids", "--seed", "1", "--duration", "30"};
+                  args.insert(args.end(), more.begin(), more.end());
+                  return args;
+              }(),
+              dir.file("server.log")) {
         using namespace std::chrono_literals;
         const auto t = wait_for_listening(process, 5s);
         const auto s = wait_for_port_line(process, port_line, 5s);

@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -22,8 +23,8 @@ const std::string bin_dir = ARENA_BIN_DIR;
 
 // arena-server with --udp-port beside TCP.
 struct udp_server : arena::test::server_beside_tcp {
-    explicit udp_server(const temp_dir& dir)
-        : server_beside_tcp(bin_dir, dir, "--udp-port", "udp listening on"), udp_port(second_port) {}
+    explicit udp_server(const temp_dir& dir, std::vector<std::string> more = {})
+        : server_beside_tcp(bin_dir, dir, "--udp-port", "udp listening on", std::move(more)), udp_port(second_port) {}
     const unsigned udp_port;
 };
 
@@ -105,4 +106,28 @@ TEST_CASE("arena-bots refuses a simulated latency over TCP: it delays datagrams"
     REQUIRE(code.has_value());
     CHECK(*code == 2);
     CHECK(p.output().find("need --transport udp") != std::string::npos);
+}
+
+TEST_CASE("with --token-secret UDP bots holding the secret join, and bots without the connect key get no peer",
+          "[e2e][udp][auth]") {
+    temp_dir dir;
+    const std::string secret = dir.file("token-secret");
+    std::ofstream(secret) << "0123456789abcdef0123456789abcdef-e2e-udp-key";
+    udp_server s(dir, {"--token-secret", secret});
+    // The bots mint their tokens and derive the connect key from the same secret file.
+    bots honest(dir, "keyed", s.udp_port,
+                {"--transport", "udp", "--bots", "4", "--duration", "3", "--token-secret", secret});
+    check_everyone_played(honest.finish(), 4);
+
+    // Without the secret a bot puts no key in ENet's connect: the gate refuses it before ENet
+    // gives it a peer, so it never gets as far as its Hello.
+    bots keyless(dir, "keyless", s.udp_port,
+                 {"--transport", "udp", "--bots", "2", "--duration", "2", "--join-timeout", "2"});
+    const auto code = keyless.process.wait_for(30s);
+    REQUIRE(code.has_value());
+    CHECK(*code == 1);
+    const json k = json::parse(arena::test::read_file(keyless.report_file));
+    CHECK(k.at("joined") == 0);
+    CHECK(k.at("failed") == 2);
+    CHECK(s.process.output().find("a connect without this server's connect key") != std::string::npos);
 }

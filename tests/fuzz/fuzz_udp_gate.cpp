@@ -2,14 +2,16 @@
 // raw datagram from anyone before ENet does. The input is a run of datagrams, each as
 //   byte 0: source address (low 4 bits: one of 16), bytes 1-2: ms since the previous one
 //   (little endian), byte 3: the datagram's length, then that many bytes (fewer at the end);
-// fed to two gates: one that remembers every address (to check the rate), one that may keep
-// only 4 (to exercise forgetting). Whatever the bytes, the gate must never read past them,
-// admit a connect datagram short enough to be amplified by ENet's answer, refuse a datagram
-// addressed to a peer (ENet judges those), admit a non-connect addressed to no peer, let an
-// address connect faster than its rate, or remember more addresses than its limit.
+// fed to three gates: one that remembers every address (to check the rate), one that may keep
+// only 4 (to exercise forgetting), and one that requires a connect key. Whatever the bytes, the
+// gate must never read past them, admit a connect datagram short enough to be amplified by
+// ENet's answer, refuse a datagram addressed to a peer (ENet judges those), admit a non-connect
+// addressed to no peer, let an address connect faster than its rate, remember more addresses
+// than its limit, or, keyed, admit a connect whose data is not an accepted key.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,6 +26,13 @@ constexpr std::size_t address_count = 16;
 constexpr net::connect_gate_limits rate_limits{.connects_per_second = 4, .burst = 16, .max_addresses = 64};
 constexpr net::connect_gate_limits small_limits{.connects_per_second = 4, .burst = 16, .max_addresses = 4};
 
+// The keyed gate's clock and keys: window 1000 (and 999) of 300 s windows. Small keys, so
+// that a fuzzer finds them in its inputs.
+constexpr std::int64_t keyed_unix_seconds = 300'000;
+std::uint32_t key_at(std::int64_t unix_seconds) {
+    return static_cast<std::uint32_t>(unix_seconds / 300);
+}
+
 void check(bool ok) {
     if (!ok) std::abort();
 }
@@ -31,7 +40,10 @@ void check(bool ok) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    net::connect_gate gate(rate_limits), small(small_limits);
+    net::connect_gate gate(rate_limits), small(small_limits), keyed(rate_limits);
+    keyed.require_connect_key(key_at, 300);
+    keyed.set_wall_clock(keyed_unix_seconds);
+    std::uint64_t passed_keyed = 0;
     std::vector<std::uint64_t> admitted(address_count, 0);
     std::vector<std::int64_t> first_ns(address_count, -1);
     std::int64_t now_ns = 1'000'000'000;
@@ -50,18 +62,25 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         (void)net::classify_datagram(datagram, true);
         const bool in = gate.admit(datagram, address, now_ns);
         const bool in_small = small.admit(datagram, address, now_ns);
+        const bool in_keyed = keyed.admit(datagram, address, now_ns);
+        passed_keyed += in_keyed ? 1 : 0;
+        const std::optional<std::uint32_t> data = net::connect_data(datagram);
+        if (kind != net::datagram_kind::connect) check(!data);
+        if (kind == net::datagram_kind::connect && datagram.size() >= net::min_connect_datagram)
+            check(data.has_value());
         ++datagrams;
         passed += in ? 1 : 0;
         switch (kind) {
             case net::datagram_kind::peer:
-                check(in && in_small);
+                check(in && in_small && in_keyed);
                 break;
             case net::datagram_kind::too_short:
             case net::datagram_kind::not_a_peer:
-                check(!in && !in_small);
+                check(!in && !in_small && !in_keyed);
                 break;
             case net::datagram_kind::connect:
-                if (datagram.size() < net::min_connect_datagram) check(!in && !in_small);
+                if (datagram.size() < net::min_connect_datagram) check(!in && !in_small && !in_keyed);
+                if (in_keyed) check(data == key_at(keyed_unix_seconds) || data == key_at(keyed_unix_seconds - 300));
                 if (in) {
                     if (first_ns[source] < 0) first_ns[source] = now_ns;
                     ++admitted[source];
@@ -77,5 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     // Every datagram was admitted or counted refused, for one reason.
     check(passed + gate.refused_rate() + gate.refused_shape() == datagrams);
+    check(gate.refused_key() == 0);
+    check(passed_keyed + keyed.refused_rate() + keyed.refused_shape() + keyed.refused_key() == datagrams);
     return 0;
 }

@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <random>
@@ -10,6 +11,7 @@
 
 #include "protocol/decode.hpp"
 #include "protocol/version.hpp"
+#include "server/auth/join_token.hpp"
 #include "server_process.hpp"
 #include "udp_client.hpp"
 
@@ -315,4 +317,37 @@ TEST_CASE("a UDP connect with every peer slot taken is refused, logged and count
     const std::string stats = read_file(stats_path);
     CHECK(stats.find("\"peer_limit\": ") != std::string::npos);
     std::remove(stats_path.c_str());
+}
+
+TEST_CASE("with --token-secret a UDP connect without the server's connect key gets no peer slot", "[net][udp][auth]") {
+    const std::string stats_path = temp_path("udp-connect-key-stats.json");
+    const std::string secret_path = temp_path("udp-connect-key-secret");
+    const std::string secret_bytes = "0123456789abcdef0123456789abcdef-udp-key-test";
+    std::ofstream(secret_path) << secret_bytes;
+    // One ENet peer slot: a connect that got past the gate would hold it.
+    udp_server server({"--token-secret", secret_path, "--max-connections", "1", "--stats-json", stats_path});
+    const auto secret = std::get<auth::token_secret>(auth::token_secret::from_bytes(secret_bytes));
+    const uint32_t key = secret.connect_key(auth::unix_now());
+
+    udp_client keyless(server.udp_port, 1000ms);  // ENet's default connect data, 0
+    CHECK_FALSE(keyless.connected());
+    udp_client wrong_key(server.udp_port, 1000ms, key ^ 0x00010000);
+    CHECK_FALSE(wrong_key.connected());
+    CHECK(server.process.log_shows(
+        "udp: refused a datagram from 127.0.0.1: a connect without this server's connect key"));
+
+    // Both are still trying, yet the one slot is free: the client with the key joins with its token.
+    udp_client honest(server.udp_port, 2000ms, key);
+    REQUIRE(honest.connected());
+    honest.send_reliable(protocol::encode_hello(protocol::protocol_version, "claims-to-be-bob",
+                                                secret.mint("alice", auth::unix_now() + 60)));
+    REQUIRE(honest.read_until(Payload::Welcome, 3000ms));
+    CHECK(server.process.log_shows("name=alice"));
+
+    CHECK(server.process.stop(SIGTERM) == 0);
+    const std::string stats = read_file(stats_path);
+    CHECK(stats.find("\"connect_key\": ") != std::string::npos);
+    CHECK(stats.find("\"peer_limit\": ") == std::string::npos);  // the keyless never reached the slots
+    std::remove(stats_path.c_str());
+    std::remove(secret_path.c_str());
 }
