@@ -3,7 +3,8 @@
 // ENet's socket is watched by Asio (a readable wait on a duplicate of its descriptor); each
 // wake-up services ENet without blocking, and a short timer lets ENet resend and time out.
 // Before ENet reads a datagram, the connect gate (udp_connect_gate.hpp) refuses connects over
-// an address's rate and connect datagrams too small to be answered without amplification.
+// an address's rate and connect datagrams too small to be answered without amplification, and
+// completes a handshake whose acknowledgement was lost when a datagram proves it (udp_handshake.hpp).
 #include <enet/enet.h>
 
 #include <boost/asio.hpp>
@@ -11,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "server/match/match.hpp"
 #include "server/net/udp_connect_gate.hpp"
@@ -80,6 +82,9 @@ private:
     // logged at most once per reason per interval).
     bool admit(ENetHost* host);
     bool refuse(udp_refusal why, const std::string& address);
+    // A datagram from a peer whose handshake ENet has not seen acknowledged, though the
+    // datagram proves it arrived: gets the acknowledgement in front (udp_handshake.hpp).
+    void acknowledge_proven_handshake(ENetHost* host);
     static bool has_free_peer_slot(const ENetHost* host, const ENetAddress& from);
 
     boost::asio::io_context& io_;
@@ -91,6 +96,7 @@ private:
     boost::asio::steady_timer timer_;
     connect_gate gate_;
     udp_refusal_log refusals_;
+    std::vector<uint8_t> proven_handshake_;  // the datagram ENet reads instead, with its acknowledgement
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>> connections_;  // by id, in connect order
     uint64_t next_id_ = 1;
     bool flush_posted_ = false;
