@@ -265,23 +265,30 @@ TEST_CASE("a UDP Hello joins though the acknowledgement of VERIFY_CONNECT before
     }
     const size_t at = ((*verify)[0] & 0x80) ? 4 : 2;
     const auto peer_id = static_cast<uint16_t>(((*verify)[at + 4] << 8) | (*verify)[at + 5]);
-    const uint8_t session = (*verify)[at + 7];  // the server's outgoingSessionID: ours to send with
+    const uint8_t session = (*verify)[at + 7];  // its outgoingSessionID: the session a client sends with
     // The acknowledgement is lost; the Hello, sent in a datagram of its own as an ENet client
     // does, arrives. ENet alone drops it unacknowledged until the acknowledgement comes, and
     // this client never sends either again.
     const auto hello = protocol::encode_hello(protocol::protocol_version, "unacknowledged", "");
-    std::vector<uint8_t> datagram = {static_cast<uint8_t>(0x80 | (session << 4) | (peer_id >> 8)),
-                                     static_cast<uint8_t>(peer_id & 0xFF),
-                                     0x00,
-                                     0x00,
-                                     0x86,  // SEND_RELIABLE | ACKNOWLEDGE
-                                     0x00,  // channel 0
-                                     0x00,
-                                     0x01,  // sequence 1
-                                     static_cast<uint8_t>(hello.size() >> 8),
-                                     static_cast<uint8_t>(hello.size() & 0xFF)};
-    datagram.insert(datagram.end(), hello.begin(), hello.end());
-    client.send(datagram);
+    auto hello_datagram = [&](uint8_t with_session) {
+        std::vector<uint8_t> d = {static_cast<uint8_t>(0x80 | (with_session << 4) | (peer_id >> 8)),
+                                  static_cast<uint8_t>(peer_id & 0xFF),
+                                  0x00,
+                                  0x00,
+                                  0x86,  // SEND_RELIABLE | ACKNOWLEDGE
+                                  0x00,  // channel 0
+                                  0x00,
+                                  0x01,  // sequence 1
+                                  static_cast<uint8_t>(hello.size() >> 8),
+                                  static_cast<uint8_t>(hello.size() & 0xFF)};
+        d.insert(d.end(), hello.begin(), hello.end());
+        return d;
+    };
+    // Neither another session nor another port proves anything.
+    client.send(hello_datagram(session ^ 1));
+    send_raw_datagram(server.udp_port, hello_datagram(session));
+    CHECK_FALSE(server.process.log_shows("hello player=1", 500ms));
+    client.send(hello_datagram(session));
     CHECK(server.process.log_shows("hello player=1 name=unacknowledged", 2000ms));
 }
 
