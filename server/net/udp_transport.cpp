@@ -9,6 +9,7 @@
 #include "server/auth/join_token.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
+#include "server/net/udp_handshake.hpp"
 
 namespace arena::net {
 
@@ -172,6 +173,7 @@ bool udp_transport::admit(ENetHost* host) {
     const std::string address = address_text(host->receivedAddress);
     switch (gate_.judge(datagram, address, servicing_now_ns)) {
         case gate_verdict::pass:
+            acknowledge_proven_handshake(host);
             return true;
         case gate_verdict::refuse_shape:
             return refuse(udp_refusal::shape, address);
@@ -184,6 +186,30 @@ bool udp_transport::admit(ENetHost* host) {
     }
     // ENet drops a connect it has no slot for without a word: say so here.
     return has_free_peer_slot(host, host->receivedAddress) ? true : refuse(udp_refusal::peer_limit, address);
+}
+
+void udp_transport::acknowledge_proven_handshake(ENetHost* host) {
+    // udp_handshake.hpp: from a peer whose acknowledgement of VERIFY_CONNECT ENet still waits
+    // for, on its address and session, a datagram proves that VERIFY_CONNECT arrived.
+    const std::span<const uint8_t> datagram(host->receivedData, host->receivedDataLength);
+    const auto header = read_datagram_header(datagram);
+    if (!header || header->peer_id >= host->peerCount) return;
+    ENetPeer& peer = host->peers[header->peer_id];
+    if (peer.state != ENET_PEER_STATE_ACKNOWLEDGING_CONNECT || peer.address.host != host->receivedAddress.host ||
+        peer.address.port != host->receivedAddress.port || header->session != peer.incomingSessionID)
+        return;
+    for (ENetListIterator it = enet_list_begin(&peer.sentReliableCommands);
+         it != enet_list_end(&peer.sentReliableCommands); it = enet_list_next(it)) {
+        const auto* sent = reinterpret_cast<const ENetOutgoingCommand*>(it);
+        if ((sent->command.header.command & ENET_PROTOCOL_COMMAND_MASK) != ENET_PROTOCOL_COMMAND_VERIFY_CONNECT)
+            continue;
+        if (acknowledge_verify_connect(datagram, {sent->reliableSequenceNumber, sent->sentTime}, proven_handshake_)) {
+            // ENet reads the datagram from here; its next one from its own buffer again.
+            host->receivedData = proven_handshake_.data();
+            host->receivedDataLength = proven_handshake_.size();
+        }
+        return;
+    }
 }
 
 bool udp_transport::refuse(udp_refusal why, const std::string& address) {

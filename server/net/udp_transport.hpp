@@ -4,7 +4,9 @@
 // wake-up services ENet without blocking, and a short timer lets ENet resend and time out.
 // Before ENet reads a datagram, the connect gate (udp_connect_gate.hpp) refuses connects over
 // an address's rate and connect datagrams too small to be answered without amplification, and,
-// when the server has a token secret, connects without its current connect key.
+// when the server has a token secret, connects without its current connect key. The transport
+// completes a handshake whose acknowledgement was lost when a datagram proves it
+// (udp_handshake.hpp).
 #include <enet/enet.h>
 
 #include <boost/asio.hpp>
@@ -12,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "server/match/match.hpp"
 #include "server/net/udp_connect_gate.hpp"
@@ -81,6 +84,9 @@ private:
     // logged at most once per reason per interval).
     bool admit(ENetHost* host);
     bool refuse(udp_refusal why, const std::string& address);
+    // A datagram from a peer whose handshake ENet has not seen acknowledged, though the
+    // datagram proves it arrived: gets the acknowledgement in front (udp_handshake.hpp).
+    void acknowledge_proven_handshake(ENetHost* host);
     static bool has_free_peer_slot(const ENetHost* host, const ENetAddress& from);
 
     boost::asio::io_context& io_;
@@ -92,6 +98,7 @@ private:
     boost::asio::steady_timer timer_;
     connect_gate gate_;
     udp_refusal_log refusals_;
+    std::vector<uint8_t> proven_handshake_;  // the datagram ENet reads instead, with its acknowledgement
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>> connections_;  // by id, in connect order
     uint64_t next_id_ = 1;
     bool flush_posted_ = false;

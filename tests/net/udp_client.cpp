@@ -1,6 +1,7 @@
 #include "udp_client.hpp"
 
 #include <arpa/inet.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -93,6 +94,38 @@ void send_raw_datagram(uint16_t port, std::span<const uint8_t> bytes) {
     to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
     ::close(fd);
+}
+
+raw_udp_socket::raw_udp_socket(uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+    if (fd_ < 0) throw std::runtime_error("socket failed");
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(port);
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    // Connected: send() goes to the server and only its datagrams are received.
+    if (::connect(fd_, reinterpret_cast<const sockaddr*>(&to), sizeof to) != 0) {
+        ::close(fd_);
+        throw std::runtime_error("connect failed");
+    }
+}
+
+raw_udp_socket::~raw_udp_socket() {
+    ::close(fd_);
+}
+
+void raw_udp_socket::send(std::span<const uint8_t> bytes) {
+    ::send(fd_, bytes.data(), bytes.size(), 0);
+}
+
+std::optional<std::vector<uint8_t>> raw_udp_socket::receive(std::chrono::milliseconds timeout) {
+    pollfd readable{fd_, POLLIN, 0};
+    if (::poll(&readable, 1, static_cast<int>(timeout.count())) <= 0) return std::nullopt;
+    std::vector<uint8_t> datagram(65536);
+    const ssize_t got = ::recv(fd_, datagram.data(), datagram.size(), 0);
+    if (got < 0) return std::nullopt;
+    datagram.resize(static_cast<size_t>(got));
+    return datagram;
 }
 
 }  // namespace arena::test

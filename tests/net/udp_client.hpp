@@ -44,6 +44,23 @@ private:
     std::vector<std::vector<uint8_t>> received_;
 };
 
+// A UDP socket of its own (one source port) to 127.0.0.1:port, for an ENet conversation
+// written by hand: a handshake with a step left out, say.
+class raw_udp_socket {
+public:
+    explicit raw_udp_socket(uint16_t port);
+    ~raw_udp_socket();
+    raw_udp_socket(const raw_udp_socket&) = delete;
+    raw_udp_socket& operator=(const raw_udp_socket&) = delete;
+
+    void send(std::span<const uint8_t> bytes);
+    // The next datagram from the server, or nothing on timeout.
+    std::optional<std::vector<uint8_t>> receive(std::chrono::milliseconds timeout);
+
+private:
+    int fd_ = -1;
+};
+
 // Sends raw bytes from a fresh UDP socket (a new source port) to 127.0.0.1:port.
 void send_raw_datagram(uint16_t port, std::span<const uint8_t> bytes);
 

@@ -83,6 +83,20 @@ play_figures play(udp_client& c, std::chrono::milliseconds duration, uint32_t fi
     return f;
 }
 
+// An ENet 1.3 CONNECT (enet/protocol.h) written by hand, so that a later step of the handshake
+// can be left out: to no peer yet, with a sent time; then CONNECT | ACKNOWLEDGE on the control
+// channel, sequence 1, and its fields in network order.
+std::vector<uint8_t> enet_connect_datagram(uint32_t connect_id) {
+    std::vector<uint8_t> d = {0x8F, 0xFF, 0x00, 0x00, 0x82, 0xFF, 0x00, 0x01};
+    auto u32 = [&d](uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8) d.push_back(static_cast<uint8_t>(v >> shift));
+    };
+    d.insert(d.end(), {0x00, 0x00, 0xFF, 0xFF});  // our peer id 0; the server picks the sessions
+    for (uint32_t field : {1400u, 32768u, 2u, 0u, 0u, 5000u, 2u, 2u, connect_id, 0u}) u32(field);
+    // mtu, window, channels, bandwidth in and out, throttle interval, acceleration, deceleration
+    return d;
+}
+
 }  // namespace
 
 TEST_CASE("a client joins over UDP beside TCP, its inputs are consumed and snapshots arrive", "[net][udp]") {
@@ -237,6 +251,47 @@ TEST_CASE("a UDP peer that connects and never says Hello is dropped after the ha
     CHECK(expect_reject(c).code == protocol::RejectCode::timeout);
     c.pump(1000ms);
     CHECK(c.disconnected());
+}
+
+TEST_CASE("a UDP Hello joins though the acknowledgement of VERIFY_CONNECT before it was lost", "[net][udp]") {
+    udp_server server({});
+    raw_udp_socket client(server.udp_port);
+    client.send(enet_connect_datagram(0x2A2A2A2A));
+    // The server's VERIFY_CONNECT brings the peer id and the session to send with.
+    std::optional<std::vector<uint8_t>> verify;
+    while (!verify) {
+        auto datagram = client.receive(2000ms);
+        REQUIRE(datagram);
+        const size_t header = ((*datagram)[0] & 0x80) ? 4 : 2;
+        if (datagram->size() >= header + 44 && ((*datagram)[header] & 0x0F) == 3) verify = datagram;
+    }
+    const size_t at = ((*verify)[0] & 0x80) ? 4 : 2;
+    const auto peer_id = static_cast<uint16_t>(((*verify)[at + 4] << 8) | (*verify)[at + 5]);
+    const uint8_t session = (*verify)[at + 7];  // its outgoingSessionID: the session a client sends with
+    // The acknowledgement is lost; the Hello, sent in a datagram of its own as an ENet client
+    // does, arrives. ENet alone drops it unacknowledged until the acknowledgement comes, and
+    // this client never sends either again.
+    const auto hello = protocol::encode_hello(protocol::protocol_version, "unacknowledged", "");
+    auto hello_datagram = [&](uint8_t with_session) {
+        std::vector<uint8_t> d = {static_cast<uint8_t>(0x80 | (with_session << 4) | (peer_id >> 8)),
+                                  static_cast<uint8_t>(peer_id & 0xFF),
+                                  0x00,
+                                  0x00,
+                                  0x86,  // SEND_RELIABLE | ACKNOWLEDGE
+                                  0x00,  // channel 0
+                                  0x00,
+                                  0x01,  // sequence 1
+                                  static_cast<uint8_t>(hello.size() >> 8),
+                                  static_cast<uint8_t>(hello.size() & 0xFF)};
+        d.insert(d.end(), hello.begin(), hello.end());
+        return d;
+    };
+    // Neither another session nor another port proves anything.
+    client.send(hello_datagram(session ^ 1));
+    send_raw_datagram(server.udp_port, hello_datagram(session));
+    CHECK_FALSE(server.process.log_shows("hello player=1", 500ms));
+    client.send(hello_datagram(session));
+    CHECK(server.process.log_shows("hello player=1 name=unacknowledged", 2000ms));
 }
 
 TEST_CASE("random datagrams, truncated ENet headers and a connect flood leave an honest UDP client its snapshots",
