@@ -84,8 +84,7 @@ struct direction {
 constexpr std::size_t max_held_packets = 100'000;
 constexpr std::size_t max_packet_bytes = 65'536;
 
-void read_all(direction& d, time_ns delay) {
-    std::vector<std::uint8_t> buffer(max_packet_bytes);
+void read_all(direction& d, time_ns delay, std::vector<std::uint8_t>& buffer) {
     for (;;) {
         const ssize_t n = read(d.from, buffer.data(), buffer.size());
         if (n <= 0) return;  // EAGAIN: nothing more for now
@@ -140,6 +139,7 @@ int main(int argc, char** argv) {
     direction back;
     back.from = there;
     back.to = here;
+    std::vector<std::uint8_t> buffer(max_packet_bytes);  // one packet read at a time
     std::printf("link-delay ready: %s, %.1f ms each way\n", device.c_str(), delay_ms);
     std::fflush(stdout);
 
@@ -155,8 +155,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "arena-link-delay: poll: %s\n", std::strerror(errno));
             return 1;
         }
-        if (fds[0].revents & POLLIN) read_all(out, delay);
-        if (fds[1].revents & POLLIN) read_all(back, delay);
+        if (fds[0].revents & POLLIN) read_all(out, delay, buffer);
+        if (fds[1].revents & POLLIN) read_all(back, delay, buffer);
         const time_ns after = monotonic_now();
         write_due(out, after);
         write_due(back, after);
