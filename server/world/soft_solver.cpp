@@ -71,17 +71,11 @@ void soft_contact_solver::gather(std::span<body> bodies, std::span<contact> cont
 // Effective masses and lever arms (anchors fixed at detection for the whole step), and each
 // point's relative normal velocity before the step's forces, which restitution reflects.
 void soft_contact_solver::prepare(std::span<contact> contacts) {
-    for (contact& c : contacts) {
-        const body_slot& a = slots_[c.slot_a];
-        const body_slot& b = slots_[c.slot_b];
-        const vec2 n = c.normal, t = tangent_of(n);
-        for (int k = 0; k < c.count; ++k) {
-            contact_point& p = c.points[k];
-            prepare_point_masses(p, a, b, n, t);
-            p.bounce = normal_velocity(p, a, b, n);
-            p.step_impulse = 0;
-        }
-    }
+    prepare_points(contacts, slots_,
+                   [](contact&, contact_point& p, const body_slot& a, const body_slot& b, const vec2& n) {
+                       p.bounce = normal_velocity(p, a, b, n);
+                       p.step_impulse = 0;
+                   });
 }
 
 void soft_contact_solver::integrate_velocities() {

@@ -10,24 +10,19 @@ namespace arena::world {
 void contact_solver::solve_velocities(std::span<body> bodies, std::span<contact> contacts, const world_config& config) {
     slots_.gather(bodies, contacts);
     const real dt = config.dt;
-    for (contact& c : contacts) {
-        const body_slot& a = slots_[c.slot_a];
-        const body_slot& b = slots_[c.slot_b];
-        const vec2 n = c.normal, t = tangent_of(n);
-        for (int k = 0; k < c.count; ++k) {
-            contact_point& p = c.points[k];
-            prepare_point_masses(p, a, b, n, t);
-            const real vn = normal_velocity(p, a, b, n);
-            // A fast approach that reaches contact within this step bounces; otherwise a gap may
-            // close (speculative contact: approach at most separation/Δt) and an overlap may not grow.
-            const bool hits_this_step = p.separation + vn * dt < 0;
-            if (vn < -config.restitution_threshold && hits_this_step) {
-                p.bounce = -c.restitution * vn;
-            } else {
-                p.bounce = p.separation > 0 ? -p.separation / dt : 0.0f;
-            }
+    // A fast approach that reaches contact within this step bounces; otherwise a gap may close
+    // (speculative contact: approach at most separation/Δt) and an overlap may not grow.
+    const auto set_bounce = [&](const contact& c, contact_point& p, const body_slot& a, const body_slot& b,
+                                const vec2& n) {
+        const real vn = normal_velocity(p, a, b, n);
+        const bool hits_this_step = p.separation + vn * dt < 0;
+        if (vn < -config.restitution_threshold && hits_this_step) {
+            p.bounce = -c.restitution * vn;
+        } else {
+            p.bounce = p.separation > 0 ? -p.separation / dt : 0.0f;
         }
-    }
+    };
+    prepare_points(contacts, slots_, set_bounce);
     // Warm start: last step's impulses at the same features are the best first guess, so that
     // stacks converge in a few iterations instead of sinking.
     for (const contact& c : contacts) apply_accumulated(c, slots_[c.slot_a], slots_[c.slot_b]);

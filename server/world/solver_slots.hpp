@@ -60,6 +60,22 @@ inline void prepare_point_masses(contact_point& p, const body_slot& a, const bod
     p.tangent_mass = kt > 0 ? 1.0f / kt : 0.0f;
 }
 
+// Every point of every contact with its effective masses and lever arms prepared, then handed
+// to `then(contact, point, slot_a, slot_b, normal)`, which sets what the solver restitutes.
+template <class Then>
+void prepare_points(std::span<contact> contacts, const solver_slots& slots, Then&& then) {
+    for (contact& c : contacts) {
+        const body_slot& a = slots[c.slot_a];
+        const body_slot& b = slots[c.slot_b];
+        const vec2 n = c.normal, t = tangent_of(n);
+        for (int k = 0; k < c.count; ++k) {
+            contact_point& p = c.points[k];
+            prepare_point_masses(p, a, b, n, t);
+            then(c, p, a, b, n);
+        }
+    }
+}
+
 // The relative normal velocity at a point from its slots' velocities: negative when closing.
 inline real normal_velocity(const contact_point& p, const body_slot& a, const body_slot& b, const vec2& n) {
     const vec2 dv = b.v + cross(b.w, p.anchor_b) - a.v - cross(a.w, p.anchor_a);
