@@ -3,24 +3,17 @@
 #include <algorithm>
 #include <vector>
 
+#include "server/net/enet_wire.hpp"
+
 namespace arena::net {
 
 namespace {
 
-// ENet 1.3's wire constants (enet/protocol.h), repeated so that this file builds without ENet
-// for the fuzz target.
-constexpr std::uint16_t max_peer_id = 0xFFF;
-constexpr std::uint16_t flag_sent_time = 1u << 15;
-constexpr std::uint16_t flags_and_session = 0xF000;  // compressed, sent time, 2 session bits
-constexpr std::uint8_t command_mask = 0x0F;
-constexpr std::uint8_t command_connect = 2;
-constexpr std::size_t command_header = 4;        // command, channel, reliable sequence number
-constexpr std::size_t connect_command = 48;      // sizeof(ENetProtocolConnect)
-constexpr std::size_t connect_data_offset = 44;  // offsetof(ENetProtocolConnect, data)
+using namespace enet_wire;
 
-std::size_t header_size(std::span<const std::uint8_t> datagram, bool checksum) {
-    const auto peer_field = static_cast<std::uint16_t>((datagram[0] << 8) | datagram[1]);  // network order
-    return ((peer_field & flag_sent_time) ? 4 : 2) + (checksum ? 4 : 0);
+// Where the first command starts: after the header and, on a host that uses one, the checksum.
+std::size_t commands_offset(const datagram_header& header, bool checksum) {
+    return header.size + (checksum ? checksum_bytes : 0);
 }
 
 // Floor division: the window of a time before the epoch is negative, as in token_secret.
@@ -31,19 +24,19 @@ std::int64_t window_of(std::int64_t unix_seconds, std::int64_t window_s) {
 }  // namespace
 
 datagram_kind classify_datagram(std::span<const std::uint8_t> datagram, bool checksum) {
-    if (datagram.size() < 2) return datagram_kind::too_short;
-    const auto peer_field = static_cast<std::uint16_t>((datagram[0] << 8) | datagram[1]);  // network order
-    const std::size_t header = header_size(datagram, checksum);
-    if (datagram.size() < header + command_header) return datagram_kind::too_short;
-    if ((peer_field & ~flags_and_session) != max_peer_id) return datagram_kind::peer;
-    return (datagram[header] & command_mask) == command_connect ? datagram_kind::connect : datagram_kind::not_a_peer;
+    const auto header = read_datagram_header(datagram);
+    if (!header) return datagram_kind::too_short;
+    const std::size_t commands = commands_offset(*header, checksum);
+    if (datagram.size() < commands + command_header) return datagram_kind::too_short;
+    if (header->peer_id != max_peer_id) return datagram_kind::peer;
+    return (datagram[commands] & command_mask) == command_connect ? datagram_kind::connect : datagram_kind::not_a_peer;
 }
 
 std::optional<std::uint32_t> connect_data(std::span<const std::uint8_t> datagram, bool checksum) {
     if (classify_datagram(datagram, checksum) != datagram_kind::connect) return std::nullopt;
-    const std::size_t header = header_size(datagram, checksum);
-    if (datagram.size() < header + connect_command) return std::nullopt;
-    const std::uint8_t* data = datagram.data() + header + connect_data_offset;
+    const std::size_t commands = commands_offset(*read_datagram_header(datagram), checksum);
+    if (datagram.size() < commands + connect_command) return std::nullopt;
+    const std::uint8_t* data = datagram.data() + commands + connect_data_offset;
     return static_cast<std::uint32_t>(data[0]) << 24 | static_cast<std::uint32_t>(data[1]) << 16 |
            static_cast<std::uint32_t>(data[2]) << 8 | static_cast<std::uint32_t>(data[3]);
 }

@@ -4,16 +4,6 @@ namespace arena::net {
 
 namespace {
 
-// ENet 1.3's wire constants (enet/protocol.h), repeated so that this file builds without ENet.
-constexpr std::uint16_t flag_compressed = 1u << 14;
-constexpr std::uint16_t flag_sent_time = 1u << 15;
-constexpr std::uint16_t session_mask = 3u << 12;
-constexpr int session_shift = 12;
-constexpr std::uint8_t command_mask = 0x0F;
-constexpr std::uint8_t command_acknowledge = 1;
-constexpr std::uint8_t control_channel = 0xFF;
-constexpr std::size_t command_header = 4;  // command, channel, reliable sequence number
-
 void put_u16(std::vector<std::uint8_t>& out, std::uint16_t value) {  // network order
     out.push_back(static_cast<std::uint8_t>(value >> 8));
     out.push_back(static_cast<std::uint8_t>(value & 0xFF));
@@ -21,20 +11,9 @@ void put_u16(std::vector<std::uint8_t>& out, std::uint16_t value) {  // network 
 
 }  // namespace
 
-std::optional<datagram_header> read_datagram_header(std::span<const std::uint8_t> datagram) {
-    if (datagram.size() < 2) return std::nullopt;
-    const auto field = static_cast<std::uint16_t>((datagram[0] << 8) | datagram[1]);
-    datagram_header header;
-    header.size = (field & flag_sent_time) ? 4 : 2;
-    if (datagram.size() < header.size) return std::nullopt;
-    header.compressed = (field & flag_compressed) != 0;
-    header.session = static_cast<std::uint8_t>((field & session_mask) >> session_shift);
-    header.peer_id = static_cast<std::uint16_t>(field & ~(flag_sent_time | flag_compressed | session_mask));
-    return header;
-}
-
 bool acknowledge_verify_connect(std::span<const std::uint8_t> datagram, unacknowledged_verify verify,
                                 std::vector<std::uint8_t>& out) {
+    using namespace enet_wire;
     const auto header = read_datagram_header(datagram);
     if (!header || header->compressed || datagram.size() < header->size + command_header) return false;
     if ((datagram[header->size] & command_mask) == command_acknowledge) return false;

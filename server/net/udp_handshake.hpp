@@ -14,24 +14,16 @@
 // Hello in one go. It proves no more than the acknowledgement itself would (that has nothing
 // secret either), so no limit of the connect gate changes.
 //
-// Plain C++ over bytes, tested without ENet; the transport checks the peer's state.
+// Plain C++ over bytes, tested without ENet; the transport checks the peer's state. The
+// datagram's header is read by enet_wire.hpp's read_datagram_header (no checksum: the
+// transport's host uses none).
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
+#include "server/net/enet_wire.hpp"
+
 namespace arena::net {
-
-// The fixed header of an ENet 1.3 datagram to a peer slot.
-struct datagram_header {
-    std::uint16_t peer_id = 0;  // 0xFFF: to no peer yet (a connect)
-    std::uint8_t session = 0;   // the 2 session bits
-    bool compressed = false;
-    std::size_t size = 0;  // bytes before the first command: 2, or 4 with the sent time
-};
-
-// Nothing when shorter than its header. (No checksum: the transport's host uses none.)
-[[nodiscard]] std::optional<datagram_header> read_datagram_header(std::span<const std::uint8_t> datagram);
 
 // The server's VERIFY_CONNECT that is not acknowledged yet: its reliable sequence number (on
 // ENet's control channel 0xFF) and ENet's time (ms) it was last sent, which the acknowledgement
