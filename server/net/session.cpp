@@ -119,7 +119,7 @@ void session::write_pending() {
         if (writing_from_ == writing_.size()) {
             const auto& batch = output_.take_all();
             if (batch.empty()) {
-                if (closing_) close_now();  // the last word is out
+                if (closing_) half_close();  // the last word is out
                 return;
             }
             writing_.clear();
@@ -234,6 +234,42 @@ void session::close_after(protocol::frame_bytes last_frame) {
     linger_.async_wait([self](const boost::system::error_code& e) {
         if (!e) self->close_now();
     });
+}
+
+void session::half_close() {
+    // Closing with inputs still unread would make the kernel answer with a reset: the client's
+    // next write fails, and a client that writes before it reads ends on that error and never
+    // sees the Bye (or Reject) already in its socket. So our side ends after the last word (a
+    // FIN), and what the client still sends is read and dropped until its own end arrives.
+    if (fd_ < 0 || ::shutdown(fd_, SHUT_WR) != 0) return close_now();
+    drain_until_closed();
+}
+
+void session::drain_until_closed() {
+    // A few reads a wake-up, so that a client flooding its half-closed connection takes no
+    // more of the loop than a reading one; linger_ bounds the whole wait.
+    uint8_t scrap[16384];
+    for (int reads = 0; reads < 8; ++reads) {
+        const ssize_t n = ::recv(fd_, scrap, sizeof scrap, MSG_DONTWAIT);
+        if (n > 0) {
+            owner_.count_in(static_cast<size_t>(n));
+            continue;
+        }
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
+        return close_now();  // the client's end (or an error): nothing more will come
+    }
+    boost::system::error_code ec;
+    room_.emplace(executor_);
+    room_->assign(fd_, ec);
+    if (ec) return close_now();
+    room_->async_wait(boost::asio::posix::stream_descriptor::wait_read,
+                      [self = shared_from_this()](const boost::system::error_code& e) {
+                          if (e == boost::asio::error::operation_aborted || self->closed_) return;
+                          (void)self->room_->release();
+                          self->room_.reset();
+                          self->drain_until_closed();
+                      });
 }
 
 void session::close_now() {

@@ -66,6 +66,10 @@ private:
     void write_pending();
     void wait_for_room();
     void close_after(protocol::frame_bytes last_frame);
+    // The last word is out: ends our side and reads what the client still sends until it
+    // closes too (or linger_ ends the wait), then closes.
+    void half_close();
+    void drain_until_closed();
     void close_now();
 
     boost::asio::any_io_executor executor_;
@@ -84,11 +88,12 @@ private:
     size_t writing_frames_ = 0;
     bool flush_requested_ = false;
     bool waiting_for_room_ = false;
-    // fd_ in the epoll set while a write waits for room (released, not closed, afterwards).
+    // fd_ in the epoll set while a write waits for room, or while a half-closed session waits
+    // for the client's end (released, not closed, afterwards).
     std::optional<boost::asio::posix::stream_descriptor> room_;
     bool closing_ = false;
     bool closed_ = false;
-    boost::asio::steady_timer linger_;  // bounds how long a closing session may flush
+    boost::asio::steady_timer linger_;  // bounds how long a closing session may flush and drain
 };
 
 }  // namespace arena::net

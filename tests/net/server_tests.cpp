@@ -1,10 +1,13 @@
 // arena-server end to end over loopback, with real sockets.
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -258,6 +261,41 @@ TEST_CASE("a match with a duration ends cleanly", "[net][e2e]") {
     joined_client c(server.port());
     auto bye = c.client.read_until(Payload::Bye, 3000ms);
     REQUIRE(bye);
+    CHECK(server.stop(0, 3000ms) == 0);
+}
+
+TEST_CASE("a client still sending inputs when the match ends reads the Bye and then a clean end instead of a reset",
+          "[net][e2e]") {
+    // The server reads inputs only at ticks, so the ones sent as the match ends stay unread.
+    // Closing over them used to make the kernel reset the connection: the client's next write
+    // failed, and a client that wrote before it read ended on that error, the Bye unseen.
+    server_process server({"--duration", "0.5"});
+    joined_client c(server.port());
+    uint32_t sequence = 0;
+    std::optional<std::vector<uint8_t>> bye;
+    const auto give_up = std::chrono::steady_clock::now() + 5s;
+    while (!bye && std::chrono::steady_clock::now() < give_up) {
+        c.client.send_frame(protocol::encode_input({++sequence, 1.0f, 0.0f, 0}));
+        auto frame = c.client.read_frame(5ms);
+        if (frame && message_of(*frame) && message_of(*frame)->payload_type() == Payload::Bye) bye = frame;
+    }
+    REQUIRE(bye);
+    // Inputs keep going out after the Bye, as from a client that has not read it yet.
+    int sent_whole = 0;
+    for (int i = 0; i < 20; ++i) {
+        const protocol::frame_bytes input = protocol::encode_input({++sequence, 1.0f, 0.0f, 0});
+        if (::send(c.client.fd(), input.data(), input.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(input.size()))
+            ++sent_whole;
+        std::this_thread::sleep_for(10ms);
+    }
+    CHECK(sent_whole == 20);
+    ::shutdown(c.client.fd(), SHUT_WR);
+    pollfd p{c.client.fd(), POLLIN, 0};
+    REQUIRE(::poll(&p, 1, 3000) == 1);
+    uint8_t rest[4096];
+    const ssize_t n = ::recv(c.client.fd(), rest, sizeof rest, 0);
+    INFO("recv: " << (n < 0 ? std::strerror(errno) : std::to_string(n) + " bytes"));
+    CHECK(n == 0);
     CHECK(server.stop(0, 3000ms) == 0);
 }
 
