@@ -176,7 +176,8 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
                                      [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
     const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
-    const predictor::correction c = predictor_->on_snapshot(snapshot.ack_sequence, own, bodies, snapshot.shot_origins);
+    const predictor::correction c =
+        predictor_->on_snapshot(snapshot.tick, snapshot.ack_sequence, own, bodies, snapshot.shot_origins);
     if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {
         return end(end_kind::protocol_error, c.problem == predictor::ack_problem::went_back
                                                  ? "Snapshot: ack_sequence went back"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "server/world/broadphase.hpp"
@@ -46,11 +47,20 @@ void own_shots::forget_after(std::uint32_t sequence) {
     std::erase_if(waiting_, [sequence](const predicted_shot& p) { return p.sequence > sequence; });
 }
 
-own_shots::gun own_shots::on_snapshot(std::uint32_t ack, std::span<const protocol::ShotOrigin> origins,
+own_shots::gun own_shots::on_snapshot(std::uint32_t tick, std::uint32_t ack,
+                                      std::span<const protocol::ShotOrigin> origins,
                                       std::span<const protocol::BodyState> view, const world::world_config& config,
                                       std::vector<float>& errors) {
     gun g;
     if (!enabled_) return g;
+    // Input `ack` was the last the world took, by `tick`; the inputs after it go one a tick.
+    const std::int64_t tick_of_ack = static_cast<std::int64_t>(tick) - static_cast<std::int64_t>(ack);
+    const auto tick_of = [&](std::uint32_t sequence) {
+        return tick_of_ack + sequence;
+    };
+    const auto sequence_at = [&](std::int64_t t) {
+        return static_cast<std::uint32_t>(std::clamp<std::int64_t>(t - tick_of_ack, 0, UINT32_MAX));
+    };
     for (const protocol::ShotOrigin& o : origins) {
         if (o.owner() != player_id_) continue;
         const auto predicted = std::find_if(waiting_.begin(), waiting_.end(),
@@ -69,15 +79,20 @@ own_shots::gun own_shots::on_snapshot(std::uint32_t ack, std::span<const protoco
             ++counts_.with_error;
             waiting_.erase(predicted);
         }
-        confirmed_.push_back({o.body_id(), o.input_sequence()});
-        last_confirmed_ = std::max(last_confirmed_.value_or(0), o.input_sequence());
+        // Fired when the world took its input: a tick estimated from this snapshot, exact
+        // unless an input came late between that tick and this snapshot's.
+        confirmed_.push_back({o.body_id(), o.input_sequence(), tick_of(o.input_sequence())});
+        if (!last_confirmed_ || o.input_sequence() > *last_confirmed_) {
+            last_confirmed_ = o.input_sequence();
+            last_confirmed_tick_ = confirmed_.back().tick;
+        }
     }
     counts_.unconfirmed += static_cast<std::uint64_t>(
         std::erase_if(waiting_, [ack](const predicted_shot& p) { return p.sequence <= ack; }));
     // A confirmed bullet no longer in view is gone: it hit something, or its lifetime ended.
     std::erase_if(confirmed_, [&](const confirmed& c) { return !in_view(view, c.body_id); });
-    if (last_confirmed_) g.next_fire = *last_confirmed_ + params_.fire_cooldown_ticks;
-    for (const confirmed& c : confirmed_) g.live.push_back(c.sequence);
+    if (last_confirmed_) g.next_fire = sequence_at(last_confirmed_tick_ + params_.fire_cooldown_ticks);
+    for (const confirmed& c : confirmed_) g.live.push_back(sequence_at(c.tick));
     return g;
 }
 

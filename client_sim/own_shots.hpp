@@ -12,6 +12,11 @@
 // The gun's state (cooldown and live bullets) counts in input sequences, one input a tick,
 // as the server counts it in ticks. After each snapshot it is rebuilt from what the server
 // confirmed: the newest confirmed shot's cooldown, and the confirmed bullets still in view.
+// The server's ticks and the inputs drift apart whenever an input comes late (the world
+// repeats the last one: an underrun) or is dropped, so each confirmed shot keeps the tick it
+// was fired in, and the gun is rebuilt in the sequences of the newest snapshot's tick and
+// acknowledgement: without it, one late input put every later shot's cooldown and every
+// bullet's lifetime a tick off until the bullet was gone.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -59,11 +64,11 @@ public:
     // Before a replay: the unacknowledged inputs' shots are predicted again.
     void forget_after(std::uint32_t sequence);
 
-    // A snapshot acknowledging input `ack`: this player's `origins` are matched; waiting shots
-    // of inputs up to `ack` without one are dropped; `view` (by increasing id) tells which
-    // confirmed bullets are still there. Returns the gun after input `ack`. The spawn errors
-    // (m) of shots matched with one go to `errors`.
-    gun on_snapshot(std::uint32_t ack, std::span<const protocol::ShotOrigin> origins,
+    // The snapshot of `tick` acknowledging input `ack`: this player's `origins` are matched;
+    // waiting shots of inputs up to `ack` without one are dropped; `view` (by increasing id)
+    // tells which confirmed bullets are still there. Returns the gun after input `ack`. The
+    // spawn errors (m) of shots matched with one go to `errors`.
+    gun on_snapshot(std::uint32_t tick, std::uint32_t ack, std::span<const protocol::ShotOrigin> origins,
                     std::span<const protocol::BodyState> view, const world::world_config& config,
                     std::vector<float>& errors);
 
@@ -77,6 +82,7 @@ private:
     struct confirmed {
         std::uint32_t body_id = 0;
         std::uint32_t sequence = 0;
+        std::int64_t tick = 0;  // the server's tick it was fired in, as the confirming snapshot tells
     };
     bool enabled_;
     std::uint32_t player_id_;
@@ -84,6 +90,7 @@ private:
     std::vector<predicted_shot> waiting_;
     std::vector<confirmed> confirmed_;             // the server's bullets of ours, seen alive in the last view
     std::optional<std::uint32_t> last_confirmed_;  // the newest confirmed shot's input
+    std::int64_t last_confirmed_tick_ = 0;         // and the tick it was fired in
     shot_counts counts_;
 };
 

@@ -101,8 +101,8 @@ void predictor::place_body(const protocol::BodyState& own) {
     placed_ = true;
 }
 
-predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own,
-                                             std::span<const protocol::BodyState> view,
+predictor::correction predictor::on_snapshot(std::uint32_t tick, std::uint32_t ack_sequence,
+                                             const protocol::BodyState* own, std::span<const protocol::BodyState> view,
                                              std::span<const protocol::ShotOrigin> origins) {
     correction c;
     if (ack_sequence < acked_sequence_) {
@@ -114,7 +114,7 @@ predictor::correction predictor::on_snapshot(std::uint32_t ack_sequence, const p
         return c;
     }
     // The gun after ack_sequence, as the server's confirmed shots tell it.
-    const own_shots::gun acked_gun = shots_.on_snapshot(ack_sequence, origins, view, config_, shot_errors_);
+    const own_shots::gun acked_gun = shots_.on_snapshot(tick, ack_sequence, origins, view, config_, shot_errors_);
     alive_ = own != nullptr;
     // Without our body there is nothing to reset to; keep every input for the next snapshot.
     if (own == nullptr) return c;

@@ -49,9 +49,9 @@ public:
         std::uint32_t replayed = 0;  // unacknowledged inputs replayed on top
         ack_problem problem = ack_problem::none;
     };
-    // A snapshot arrived. own: our body's state in it, null when absent; view: every body
-    // in it, by increasing id; origins: its shot origins (every player's).
-    correction on_snapshot(std::uint32_t ack_sequence, const protocol::BodyState* own,
+    // The snapshot of `tick` arrived. own: our body's state in it, null when absent; view:
+    // every body in it, by increasing id; origins: its shot origins (every player's).
+    correction on_snapshot(std::uint32_t tick, std::uint32_t ack_sequence, const protocol::BodyState* own,
                            std::span<const protocol::BodyState> view = {},
                            std::span<const protocol::ShotOrigin> origins = {});
     // The own shots: those still predicted, and how the matching went.

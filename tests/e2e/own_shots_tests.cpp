@@ -105,6 +105,7 @@ TEST_CASE("with no loss the predicted ship is bit-exact while firing, and every 
 
     struct in_flight {
         std::uint32_t arrives;
+        std::uint32_t tick;
         std::uint32_t ack;
         BodyState own;
         std::vector<BodyState> view;
@@ -112,11 +113,11 @@ TEST_CASE("with no loss the predicted ship is bit-exact while firing, and every 
     };
     std::deque<in_flight> wire;
     const std::vector<BodyState> first = server.view();
-    wire.push_back({0, 0, state_of(*server.w.find(server.ship)), first, {}});
+    wire.push_back({0, server.w.tick(), 0, state_of(*server.w.find(server.ship)), first, {}});
     for (std::uint32_t t = 0; t <= 900; ++t) {
         while (!wire.empty() && wire.front().arrives <= t) {
             const in_flight& f = wire.front();
-            REQUIRE(p.on_snapshot(f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
+            REQUIRE(p.on_snapshot(f.tick, f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
             wire.pop_front();
         }
         const std::uint32_t s = t + 1;
@@ -127,7 +128,7 @@ TEST_CASE("with no loss the predicted ship is bit-exact while firing, and every 
         REQUIRE(ship != nullptr);  // nothing may hit it: the test is about a lone ship
         if (p.body() != nullptr) REQUIRE(same_body(*p.body(), *ship));  // the recoil included
         if (s % interval == 0) {
-            wire.push_back({s + delay, s, state_of(*ship), server.view(), std::move(server.origins)});
+            wire.push_back({s + delay, server.w.tick(), s, state_of(*ship), server.view(), std::move(server.origins)});
             server.origins.clear();
         }
     }
@@ -148,7 +149,7 @@ TEST_CASE("a shot the server did not fire is unconfirmed, one it fired unpredict
     server_game server(asteroids_game());
     predictor p(server.w.config(), server.ship, player);
     const BodyState start = state_of(*server.w.find(server.ship));
-    REQUIRE(p.on_snapshot(0, &start, server.view()).own_found);
+    REQUIRE(p.on_snapshot(server.w.tick(), 0, &start, server.view()).own_found);
     const world::player_input fire{0, 0, rules::button_fire};
     // Input 1 fires on both sides, but the server's spawn is moved by 1 cm.
     p.on_input(1, fire);
@@ -162,7 +163,7 @@ TEST_CASE("a shot the server did not fire is unconfirmed, one it fired unpredict
     auto snapshot = [&](std::uint32_t ack) {
         const BodyState own = state_of(*server.w.find(server.ship));
         const std::vector<BodyState> view = server.view();
-        const auto c = p.on_snapshot(ack, &own, view, server.origins);
+        const auto c = p.on_snapshot(server.w.tick(), ack, &own, view, server.origins);
         server.origins.clear();
         return c;
     };
@@ -182,4 +183,63 @@ TEST_CASE("a shot the server did not fire is unconfirmed, one it fired unpredict
     CHECK(p.shots().counts().unconfirmed == 1);
     CHECK(p.shots().counts().unpredicted == 1);
     CHECK(p.shots().waiting().empty());
+}
+
+TEST_CASE("after late inputs the server repeated a tick for, the gun still counts in the server's ticks",
+          "[bots][prediction][shots]") {
+    // Every 40th tick the client's input is late: the server steps its last one again (an
+    // underrun) and takes each later input a tick later than before. Bullets expire and the
+    // cooldown ends in the server's ticks; a client that counted them in its own inputs would
+    // fire a tick early after each late input, for as long as the bullets fired before it live.
+    server_game server(asteroids_game());
+    predictor p(server.w.config(), server.ship, player);
+    behavior drive(behavior_kind::random, 5, 1, server.w.config());
+    struct in_flight {
+        std::uint32_t arrives;
+        std::uint32_t tick;
+        std::uint32_t ack;
+        BodyState own;
+        std::vector<BodyState> view;
+        std::vector<ShotOrigin> origins;
+    };
+    std::deque<in_flight> wire;
+    wire.push_back({0, server.w.tick(), 0, state_of(*server.w.find(server.ship)), server.view(), {}});
+    std::deque<std::pair<std::uint32_t, world::player_input>> waiting;  // sent, not yet taken
+    std::pair<std::uint32_t, world::player_input> last{0, {}};
+    std::uint32_t underruns = 0;
+    for (std::uint32_t t = 0; t <= 1800; ++t) {
+        while (!wire.empty() && wire.front().arrives <= t) {
+            const in_flight& f = wire.front();
+            REQUIRE(p.on_snapshot(f.tick, f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
+            wire.pop_front();
+        }
+        const std::uint32_t s = t + 1;
+        const world::player_input in = firing(drive, p, s);
+        p.on_input(s, in);
+        waiting.emplace_back(s, in);
+        if (t % 40 == 39) {
+            ++underruns;  // this tick's input is late: the last one again
+        } else {
+            last = waiting.front();
+            waiting.pop_front();
+        }
+        server.step(last.first, last.second);
+        REQUIRE(server.w.find(server.ship) != nullptr);
+        if (server.w.tick() % 3 == 0) {
+            wire.push_back({t + 4, server.w.tick(), last.first, state_of(*server.w.find(server.ship)), server.view(),
+                            std::move(server.origins)});
+            server.origins.clear();
+        }
+    }
+    const arena::bots::shot_counts& counts = p.shots().counts();
+    const std::uint32_t fired = server.r.scoreboard()[0].shots;
+    REQUIRE(underruns == 45);
+    CHECK(fired > 80);
+    CHECK(counts.exact + counts.with_error > 80);
+    // What is left: a repeated input holds fire too, and now and then the server's gun is
+    // ready in the repeated tick, so it fires a shot the client could not foresee and refuses
+    // the client's next one (measured 5 and 7 here; counted in inputs, 6 and 38, and only 58
+    // shots matched).
+    INFO("unconfirmed " << counts.unconfirmed << ", unpredicted " << counts.unpredicted << " of " << fired);
+    CHECK(counts.unconfirmed + counts.unpredicted <= underruns / 3);
 }

@@ -1,6 +1,7 @@
 // The predictor against a local "server" world fed the same inputs: with no other body near
 // ours, prediction is bit-exact whatever the latency; a server that deviates (a repeated input,
-// a protocol slip) shows up as error or as a flagged problem.
+// a protocol slip) shows up as error or as a flagged problem. No shots are fired here, so a
+// snapshot's tick (it places only the gun) is given as its ack.
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <deque>
@@ -68,14 +69,14 @@ TEST_CASE("prediction is bit-exact with zero latency and no other bodies", "[bot
     behavior drive(behavior_kind::random, 7, 0, config);  // thrust, turn and impulses
 
     const BodyState first = server.state();
-    REQUIRE(p.on_snapshot(0, &first).own_found);
+    REQUIRE(p.on_snapshot(0, 0, &first).own_found);
     for (std::uint32_t s = 1; s <= 600; ++s) {
         const world::player_input in = drive.next({p.body()});
         p.on_input(s, in);
         server.step(in);
         REQUIRE(same_body(*p.body(), server.own()));  // before the snapshot: pure prediction
         const BodyState now = server.state();
-        const predictor::correction c = p.on_snapshot(s, &now);
+        const predictor::correction c = p.on_snapshot(s, s, &now);
         REQUIRE(c.error.has_value());
         REQUIRE(*c.error == 0.0f);
         REQUIRE(c.replayed == 0);
@@ -102,7 +103,7 @@ TEST_CASE("prediction stays bit-exact with latency: snapshots every 3 ticks, del
     for (std::uint32_t t = 0; t <= 900; ++t) {
         // The snapshots due now arrive first, as a client's reader would see them.
         while (!wire.empty() && wire.front().arrives <= t) {
-            const predictor::correction c = p.on_snapshot(wire.front().ack, &wire.front().state);
+            const predictor::correction c = p.on_snapshot(wire.front().ack, wire.front().ack, &wire.front().state);
             REQUIRE(c.problem == predictor::ack_problem::none);
             if (c.error) {
                 REQUIRE(*c.error == 0.0f);
@@ -128,7 +129,7 @@ TEST_CASE("with other bodies in the server's world, prediction is exact until on
     predictor p(config, server.id, player);
     behavior drive(behavior_kind::random, 3, 1, config);
     const BodyState first = server.state();
-    p.on_snapshot(0, &first);
+    p.on_snapshot(0, 0, &first);
     bool touched = false;
     std::uint32_t exact = 0;
     for (std::uint32_t s = 1; s <= 1200 && !touched; ++s) {
@@ -142,7 +143,7 @@ TEST_CASE("with other bodies in the server's world, prediction is exact until on
         }
         if (touched) break;
         const BodyState now = server.state();
-        const predictor::correction c = p.on_snapshot(s, &now);
+        const predictor::correction c = p.on_snapshot(s, s, &now);
         REQUIRE(*c.error == 0.0f);
         ++exact;
     }
@@ -154,7 +155,7 @@ TEST_CASE("a repeated input on the server shows as error once, then prediction i
     server_world server(config, 1, {100, 100});
     predictor p(config, server.id, player);
     const BodyState first = server.state();
-    p.on_snapshot(0, &first);
+    p.on_snapshot(0, 0, &first);
     const world::player_input full{1.0f, 0.2f, 0};
     std::uint32_t s = 0;
     auto tick = [&](bool underrun) {
@@ -163,13 +164,13 @@ TEST_CASE("a repeated input on the server shows as error once, then prediction i
     };
     for (int i = 0; i < 60; ++i) tick(false);
     const BodyState before = server.state();
-    REQUIRE(*p.on_snapshot(s, &before).error == 0.0f);
+    REQUIRE(*p.on_snapshot(s, s, &before).error == 0.0f);
 
     // The server's tick comes before our next input: it repeats input s, then consumes s+1.
     tick(true);
     tick(false);
     const BodyState slipped = server.state();
-    const predictor::correction late = p.on_snapshot(s, &slipped);
+    const predictor::correction late = p.on_snapshot(s, s, &slipped);
     REQUIRE(late.error.has_value());
     CHECK(*late.error > 0.0f);
     // One tick of motion at most: the body is the same, only one Δt further along.
@@ -178,7 +179,7 @@ TEST_CASE("a repeated input on the server shows as error once, then prediction i
     // Corrected: the next predictions start from the server's state.
     for (int i = 0; i < 3; ++i) tick(false);
     const BodyState after = server.state();
-    REQUIRE(*p.on_snapshot(s, &after).error == 0.0f);
+    REQUIRE(*p.on_snapshot(s, s, &after).error == 0.0f);
 }
 
 TEST_CASE("acknowledgements that go back or run ahead are flagged and ignored", "[bots][prediction]") {
@@ -186,19 +187,19 @@ TEST_CASE("acknowledgements that go back or run ahead are flagged and ignored", 
     server_world server(config, 1, {100, 100});
     predictor p(config, server.id, player);
     const BodyState state = server.state();
-    p.on_snapshot(0, &state);
+    p.on_snapshot(0, 0, &state);
     for (std::uint32_t s = 1; s <= 5; ++s) p.on_input(s, {});
-    CHECK(p.on_snapshot(6, &state).problem == predictor::ack_problem::ahead);
-    CHECK(p.on_snapshot(4, &state).problem == predictor::ack_problem::none);
+    CHECK(p.on_snapshot(6, 6, &state).problem == predictor::ack_problem::ahead);
+    CHECK(p.on_snapshot(4, 4, &state).problem == predictor::ack_problem::none);
     CHECK(p.unacknowledged() == 1);
-    CHECK(p.on_snapshot(3, &state).problem == predictor::ack_problem::went_back);
+    CHECK(p.on_snapshot(3, 3, &state).problem == predictor::ack_problem::went_back);
 }
 
 TEST_CASE("a snapshot without our body keeps every input for the next one", "[bots][prediction]") {
     const world::world_config config = without_rocks(*world::preset_by_name("asteroids"));
     predictor p(config, 9, player);
     for (std::uint32_t s = 1; s <= 3; ++s) p.on_input(s, {1.0f, 0.0f, 0});
-    const predictor::correction c = p.on_snapshot(2, nullptr);
+    const predictor::correction c = p.on_snapshot(2, 2, nullptr);
     CHECK_FALSE(c.own_found);
     CHECK(p.unacknowledged() == 3);
     CHECK(p.body() == nullptr);

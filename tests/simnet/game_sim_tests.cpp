@@ -66,11 +66,16 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
     config.max_inputs_per_second = 4u * config.tick_rate;  // a lossy stream's bursts (match_sim_tests.cpp)
     match_sim sim(config, asteroids_rules_world(), o);
 
-    // The server's scoreboard after every tick, to compare with what each client holds.
+    // The server's scoreboard and each player's ship after every tick, to compare with what
+    // each client holds as of its newest snapshot.
     std::map<uint32_t, std::vector<rules::score_line>> boards;
+    std::map<uint32_t, std::map<uint32_t, uint32_t>> ships;  // tick -> player -> body (0: none)
     for (int t = 0; t < 1800; ++t) {
         sim.run_ticks(1);
-        boards[sim.match().state().tick()] = sim.match().game_rules().scoreboard();
+        const uint32_t tick = sim.match().state().tick();
+        boards[tick] = sim.match().game_rules().scoreboard();
+        for (const rules::score_line& line : boards[tick])
+            ships[tick][line.player] = sim.match().game_rules().body_of(line.player);
     }
     const match::match_counters counters = sim.match().counters();
     REQUIRE(counters.hits > 0);
@@ -104,8 +109,7 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
             previous = e.sequence;
             if (e.kind == protocol::GameEventKind::respawn && e.player == c.player_id()) ++respawns_followed;
         }
-        if (sim.match().game_rules().body_of(c.player_id()) != 0)
-            CHECK(c.entity_id() == sim.match().game_rules().body_of(c.player_id()));
+        if (const uint32_t ship = ships[c.last_snapshot_tick()][c.player_id()]; ship != 0) CHECK(c.entity_id() == ship);
     }
     CHECK(respawns_followed > 0);
 

@@ -168,7 +168,7 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
     const protocol::BodyState* own = (at != view_.end() && at->id() == entity_id_) ? &*at : nullptr;
     // The view and the shot origins: the own shots are predicted too (own_shots.hpp).
     const bots::predictor::correction c =
-        predictor_->on_snapshot(snapshot.ack_sequence, own, view_, snapshot.shot_origins);
+        predictor_->on_snapshot(snapshot.tick, snapshot.ack_sequence, own, view_, snapshot.shot_origins);
     if (c.problem == bots::predictor::ack_problem::went_back) return fail("Snapshot: ack_sequence went back");
     if (c.problem == bots::predictor::ack_problem::ahead)
         return fail("Snapshot: ack_sequence acknowledges an input never sent");
