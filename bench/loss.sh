@@ -43,7 +43,7 @@ trap cleanup EXIT
 
 # connect LOSS_PERMILLE LATENCY_MS LABEL: the two namespaces, their link and their loss.
 connect() {
-  local permille=$1 latency=$2 label=$3 ns address
+  local permille=$1 latency=$2 label=$3 ns
   drop_namespaces
   for ns in "$server_ns" "$bots_ns"; do
     ip netns add "$ns"

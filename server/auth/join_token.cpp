@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "server/auth/key_window.hpp"
+
 namespace arena::auth {
 
 namespace {
@@ -93,8 +95,7 @@ std::variant<token_claims, token_error> token_secret::verify(std::string_view to
 }
 
 std::uint32_t token_secret::connect_key(int64_t unix_seconds) const {
-    // Floor division, so that the window before the epoch is -1, not 0 twice.
-    const int64_t window = unix_seconds / connect_key_window_s - (unix_seconds % connect_key_window_s < 0 ? 1 : 0);
+    const int64_t window = key_window(unix_seconds, connect_key_window_s);
     // Domain separation: every token body starts with "v1." and this message does not, so a
     // key is never part of a token's MAC, nor this MAC a token's.
     const std::string digest = mac("udp-connect.v1." + std::to_string(window));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "server/auth/key_window.hpp"
 #include "server/net/enet_wire.hpp"
 
 namespace arena::net {
@@ -14,11 +15,6 @@ using namespace enet_wire;
 // Where the first command starts: after the header and, on a host that uses one, the checksum.
 std::size_t commands_offset(const datagram_header& header, bool checksum) {
     return header.size + (checksum ? checksum_bytes : 0);
-}
-
-// Floor division: the window of a time before the epoch is negative, as in token_secret.
-std::int64_t window_of(std::int64_t unix_seconds, std::int64_t window_s) {
-    return unix_seconds / window_s - (unix_seconds % window_s < 0 ? 1 : 0);
 }
 
 }  // namespace
@@ -49,7 +45,7 @@ void connect_gate::require_connect_key(std::function<std::uint32_t(std::int64_t)
 
 void connect_gate::set_wall_clock(std::int64_t unix_seconds) {
     if (!key_at_) return;
-    const std::int64_t window = window_of(unix_seconds, window_s_);
+    const std::int64_t window = auth::key_window(unix_seconds, window_s_);
     if (keys_window_ == window) return;
     accepted_keys_ = {key_at_(unix_seconds), key_at_(unix_seconds - window_s_)};
     keys_window_ = window;
