@@ -27,6 +27,7 @@ export class Hud {
   private readonly ping = el('ping');
   private readonly rate = el('rate');
   private readonly error = el('prediction-error');
+  private readonly leftOut = el('left-out');
   private readonly status = el('status');
 
   private shown = 0;
@@ -77,9 +78,10 @@ export class Hud {
     this.board.replaceChildren(...rows);
   }
 
-  figures(pingMs: number | null, snapshotsPerSecond: number, predictionErrorM: number | null): void {
+  figures(pingMs: number | null, snapshotsPerSecond: number, predictionErrorM: number | null, inputsLeftOut: number): void {
     this.ping.textContent = pingMs === null ? '–' : `${pingMs.toFixed(1)} ms`;
     this.rate.textContent = `${snapshotsPerSecond.toFixed(0)}/s`;
     this.error.textContent = predictionErrorM === null ? '–' : `${(predictionErrorM * 100).toFixed(1)} cm`;
+    this.leftOut.textContent = String(inputsLeftOut);
   }
 }

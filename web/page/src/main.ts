@@ -152,7 +152,7 @@ async function main(): Promise<void> {
     snapshotTimes = snapshotTimes.filter((t) => now - t < 1000);
     page.fps = frameTimes.length;
     page.snapshotRate = snapshotTimes.length;
-    if (page.frames % 10 === 0) hud.figures(client.rtt, page.snapshotRate, page.predictionError);
+    if (page.frames % 10 === 0) hud.figures(client.rtt, page.snapshotRate, page.predictionError, client.inputsLeftOut);
     if (!page.bye) requestAnimationFrame(draw);
   };
   requestAnimationFrame(draw);

@@ -179,6 +179,13 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   assert.ok(figures.fps > 0, 'requestAnimationFrame draws');
   assert.ok(figures.arrival.length > 0 && figures.errors.length > 0, 'the page measures its snapshots');
   assert.match(figures.hud, /ping \d+(\.\d+)? ms/);
+  // The HUD's count of inputs left out is the SDK's: read both at once, between two HUD updates.
+  const leftOut = await probe.evaluate(() => ({
+    hud: Number(document.getElementById('left-out').textContent),
+    sdk: window.arenaPage.client.inputsLeftOut,
+  }));
+  assert.ok(Number.isInteger(leftOut.hud) && leftOut.hud >= 0 && leftOut.hud <= leftOut.sdk,
+            `inputs left out: the HUD says ${leftOut.hud}, the SDK ${leftOut.sdk}`);
   assert.match(figures.hud, /probe/, 'the scoreboard names the probe');
 
   // A spectator watches: the players' ships (and every other body) drawn, none of its own, the
