@@ -90,9 +90,9 @@ own_shots::gun own_shots::on_snapshot(std::uint32_t tick, std::uint32_t ack,
     counts_.unconfirmed += static_cast<std::uint64_t>(
         std::erase_if(waiting_, [ack](const predicted_shot& p) { return p.sequence <= ack; }));
     // A confirmed bullet no longer in view is gone: it hit something, or its lifetime ended.
-    std::erase_if(confirmed_, [&](const confirmed& c) { return !in_view(view, c.body_id); });
+    std::erase_if(confirmed_, [&](const confirmed_shot& c) { return !in_view(view, c.body_id); });
     if (last_confirmed_) g.next_fire = sequence_at(last_confirmed_tick_ + params_.fire_cooldown_ticks);
-    for (const confirmed& c : confirmed_) g.live.push_back(sequence_at(c.tick));
+    for (const confirmed_shot& c : confirmed_) g.live.push_back(sequence_at(c.tick));
     return g;
 }
 

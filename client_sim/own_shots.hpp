@@ -59,6 +59,13 @@ public:
     // ship its recoil, updates `g` and returns the shot.
     std::optional<predicted_shot> fire(gun& g, std::uint32_t sequence, const world::player_input& input,
                                        world::body& ship) const;
+    // A bullet of ours the server confirmed, still in the newest view.
+    struct confirmed_shot {
+        std::uint32_t body_id = 0;
+        std::uint32_t sequence = 0;
+        std::int64_t tick = 0;  // the server's tick it was fired in, as the confirming snapshot tells
+    };
+
     // A shot predicted for the input just sent, or on a replay of an unacknowledged one.
     void predicted(const predicted_shot& shot) { waiting_.push_back(shot); }
     // Before a replay: the unacknowledged inputs' shots are predicted again.
@@ -76,19 +83,16 @@ public:
     [[nodiscard]] const shot_counts& counts() const { return counts_; }
     // Predicted shots the server has not confirmed yet, oldest first.
     [[nodiscard]] std::span<const predicted_shot> waiting() const { return waiting_; }
+    // Confirmed bullets still in the newest view, by the order they were confirmed.
+    [[nodiscard]] std::span<const confirmed_shot> confirmed() const { return confirmed_; }
     [[nodiscard]] const rules::asteroids_params& params() const { return params_; }
 
 private:
-    struct confirmed {
-        std::uint32_t body_id = 0;
-        std::uint32_t sequence = 0;
-        std::int64_t tick = 0;  // the server's tick it was fired in, as the confirming snapshot tells
-    };
     bool enabled_;
     std::uint32_t player_id_;
     rules::asteroids_params params_;  // the server's: make_rules() plays Asteroids with the defaults
     std::vector<predicted_shot> waiting_;
-    std::vector<confirmed> confirmed_;             // the server's bullets of ours, seen alive in the last view
+    std::vector<confirmed_shot> confirmed_;        // the server's bullets of ours, seen alive in the last view
     std::optional<std::uint32_t> last_confirmed_;  // the newest confirmed shot's input
     std::int64_t last_confirmed_tick_ = 0;         // and the tick it was fired in
     shot_counts counts_;

@@ -1,6 +1,6 @@
 // The browser SDK's session core (web/sdk/core/session.*), natively: after a respawn of its
-// own player the session predicts the new ship, and it paces its inputs, as the bots' client
-// core does.
+// own player the session predicts the new ship, it paces its inputs, as the bots' client core
+// does, and it places the own bullets where the prediction has them.
 #include <catch2/catch.hpp>
 #include <vector>
 
@@ -10,6 +10,7 @@
 #include "protocol/snapshot.hpp"
 #include "protocol/verify.hpp"
 #include "server/config/config_json.hpp"
+#include "server/rules/asteroids_shot.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
 #include "web/sdk/core/session.hpp"
@@ -21,7 +22,10 @@ namespace {
 constexpr std::uint32_t own_player = 3;
 constexpr std::uint32_t first_ship = 7;
 
-protocol::frame_bytes welcome() {
+// `asteroids_rules`: played by the Asteroids rules, so that the session predicts own shots.
+protocol::frame_bytes welcome(bool asteroids_rules = false) {
+    world::world_config config = *world::preset_by_name("asteroids");
+    if (asteroids_rules) config.rules = world::game_rules::asteroids;
     protocol::welcome_info w;
     w.player_id = own_player;
     w.entity_id = first_ship;
@@ -29,7 +33,7 @@ protocol::frame_bytes welcome() {
     w.tick_rate = 60;
     w.snapshot_rate = 20;
     w.preset = "asteroids";
-    w.world_config = config::config_to_json(*world::preset_by_name("asteroids"));
+    w.world_config = config::config_to_json(config);
     w.world_config_hash = protocol::world_config_hash(w.world_config);
     w.world_version = world::world_version;
     return protocol::encode_welcome(w);
@@ -157,5 +161,63 @@ TEST_CASE("after two delta snapshots in a row with extra inputs waiting the sess
     for (int i = 0; i < 2; ++i) REQUIRE(s.feed(delta_snapshot(tick += 3, sent - 3, 1)) == protocol::Payload::Snapshot);
     CHECK(send());
     CHECK(s.inputs_left_out() == 1);
+    CHECK(s.error().empty());
+}
+
+TEST_CASE("an own shot is placed at the nose as it is fired and once the server's bullet where the prediction had it",
+          "[sdk][client][shots]") {
+    sdk::session s(false);
+    (void)s.hello("probe", "");
+    REQUIRE(s.feed(welcome(true)) == protocol::Payload::Welcome);
+    (void)s.input(0, 0, 0);
+    REQUIRE(s.feed(snapshot(103, 1, {ship(first_ship, own_player, 10.0f)})) == protocol::Payload::Snapshot);
+    CHECK(s.own_bullets().empty());
+
+    // Input 2 fires from the ship at rest, facing +x: the bullet spawns 1.5 + 0.2 + 0.1 m ahead
+    // at 2 N·s / 0.05 kg = 40 m/s, and is drawn after that input's step.
+    (void)s.input(0, 0, rules::button_fire);
+    std::vector<sdk::own_bullet> bullets = s.own_bullets();
+    REQUIRE(bullets.size() == 1);
+    CHECK(bullets[0].body_id == 0);
+    CHECK(bullets[0].sequence == 2);
+    const float dt = 1.0f / 60.0f;
+    CHECK(bullets[0].x == Approx(11.8f + 40.0f * dt).margin(1e-4));
+    CHECK(bullets[0].y == Approx(20.0f).margin(1e-4));
+    CHECK(bullets[0].vx == Approx(40.0f).margin(1e-4));
+    (void)s.input(0, 0, 0);
+    (void)s.input(0, 0, 0);
+    bullets = s.own_bullets();
+    REQUIRE(bullets.size() == 1);
+    const sdk::own_bullet before = bullets[0];
+    CHECK(before.x == Approx(11.8f + 3 * 40.0f * dt).margin(1e-4));
+
+    // The server's snapshot after input 3 holds the bullet (body 20), moved by the world's two
+    // steps since its spawn, with its origin: the session now places that body, one step on,
+    // where it had the predicted one (the same float steps: bit for bit).
+    const float spawn_x = 10.0f + (1.5f + 0.2f + 0.1f);
+    float x = spawn_x;
+    for (int k = 0; k < 2; ++k) x += before.vx * dt;
+    protocol::shape_list described;
+    protocol::shape_desc round;
+    round.id = 20;
+    round.kind = 3;
+    round.radius = 0.2f;
+    described.append(round);
+    described.origins.emplace_back(20, own_player, 2, spawn_x, 20.0f, before.vx, before.vy);
+    flatbuffers::FlatBufferBuilder fbb;
+    const std::vector<protocol::BodyState> view{ship(first_ship, own_player, 10.0f),
+                                                protocol::BodyState(20, 0, x, 20.0f, before.vx, before.vy, 0, 0)};
+    const auto frame = protocol::encode_snapshot(fbb, 106, 3, view, &described);
+    REQUIRE(s.feed({frame.begin(), frame.end()}) == protocol::Payload::Snapshot);
+    bullets = s.own_bullets();
+    REQUIRE(bullets.size() == 1);
+    CHECK(bullets[0].body_id == 20);
+    CHECK(bullets[0].sequence == 2);
+    CHECK(bullets[0].x == before.x);
+    CHECK(bullets[0].y == before.y);
+
+    // Gone from the view (it hit something): no longer drawn.
+    REQUIRE(s.feed(snapshot(109, 4, {ship(first_ship, own_player, 10.0f)})) == protocol::Payload::Snapshot);
+    CHECK(s.own_bullets().empty());
     CHECK(s.error().empty());
 }

@@ -6,7 +6,7 @@
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 import { connect } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
-import { Body, Flash, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
+import { Body, Flash, KIND_BULLET, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
 import { Hud, Line } from './hud.js';
 
 const FLASH_MS = 600;
@@ -40,6 +40,9 @@ interface PageState {
   predictionErrors: number[];
   arrivalToRender: number[];
   events: number;
+  /** Own shots drawn before any snapshot held them (the SDK's predicted shots), summed over
+   *  the frames drawn. */
+  predictedShotsDrawn: number;
   bye: unknown;
   error: string;
 }
@@ -61,7 +64,8 @@ async function main(): Promise<void> {
   const name = (params.get('name') ?? '').trim() || (spectating ? 'spectator' : 'player');
   const page: PageState = {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
-    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, bye: null, error: '',
+    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
+    bye: null, error: '',
   };
   window.arenaPage = page;
 
@@ -140,6 +144,9 @@ async function main(): Promise<void> {
       const live = new Set(bodies.map((b) => b.id));
       for (const id of lastSeen.keys()) if (!live.has(id)) lastSeen.delete(id);
     }
+    // The own shots the server has not shown yet: each bullet appears as it is fired.
+    for (const s of state.shots) bodies.push({ id: 0, owner: page.playerId, x: s.x, y: s.y, angle: 0, kind: KIND_BULLET, predicted: true });
+    page.predictedShotsDrawn += state.shots.length;
     flashes = flashes.filter((f) => now - f.born < f.life);
     painter.frame(world, page.playerId, centre, statics, bodies, flashes, now, span);
     page.drawn = bodies.length;

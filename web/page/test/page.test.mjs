@@ -113,6 +113,7 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   const shots = async () => Number((await (await fetch(`${url}metrics`)).text()).match(/^arena_shots_total (\d+)$/m)?.[1] ?? NaN);
   const shotsBefore = await shots();
   assert.ok(Number.isFinite(shotsBefore), 'the server exports arena_shots_total');
+  const predictedBefore = await probe.evaluate(() => window.arenaPage.predictedShotsDrawn);
   await probe.keyboard.down(' ');
   await probe.keyboard.down('ArrowLeft');
   await sleep(2000);
@@ -123,6 +124,9 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
     return n > shotsBefore ? n : 0;
   });
   console.log(`space held for 2 s: ${shotsAfter - shotsBefore} shots counted by the server`);
+  // Each bullet was drawn as it was fired, before any snapshot held it (the SDK's prediction).
+  const predictedDrawn = (await probe.evaluate(() => window.arenaPage.predictedShotsDrawn)) - predictedBefore;
+  assert.ok(predictedDrawn > 0, `predicted shots drawn: ${predictedDrawn}`);
 
   // Aim at the nearest rock and fire, with the keys, until the HUD shows points (or 6 s pass):
   // then the comparison with the server's score below is not one of two zeros.

@@ -57,10 +57,14 @@ sdk_shape to_sdk(const arena::protocol::shape_desc& d) {
     return s;
 }
 
+// An own bullet (session.hpp): body_id, sequence, x, y, vx, vy; 24 bytes.
+static_assert(sizeof(arena::sdk::own_bullet) == 24);
+
 struct client {
     arena::sdk::session session;
     std::vector<sdk_shape> shapes;
     std::vector<sdk_static> statics;
+    std::vector<arena::sdk::own_bullet> bullets;  // arena_own_bullets's
     float predicted[6] = {};
     client(bool delta, bool spectator) : session(delta, spectator) {}
 };
@@ -226,6 +230,15 @@ ARENA_API const float* arena_predicted(client* c) {
                              b->velocity.y(), b->angle,        b->angular_velocity};
     std::memcpy(c->predicted, values, sizeof(values));
     return c->predicted;
+}
+// The own bullets where the prediction has them now (session.hpp): 24 bytes each, as many as
+// arena_own_bullet_count says, valid until the next call of this.
+ARENA_API const arena::sdk::own_bullet* arena_own_bullets(client* c) {
+    c->bullets = c->session.own_bullets();
+    return c->bullets.data();
+}
+ARENA_API std::uint32_t arena_own_bullet_count(const client* c) {
+    return static_cast<std::uint32_t>(c->bullets.size());
 }
 // Metres, for the newest snapshot's acknowledged input; NaN when it measured none.
 ARENA_API double arena_prediction_error(const client* c) {

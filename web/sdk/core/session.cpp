@@ -8,6 +8,7 @@
 #include "protocol/messages.hpp"
 #include "protocol/verify.hpp"
 #include "server/config/config_json.hpp"
+#include "server/world/integrate.hpp"
 #include "server/world/world.hpp"
 
 namespace arena::sdk {
@@ -180,6 +181,37 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
 
 const world::body* session::predicted() const {
     return predictor_ ? predictor_->body() : nullptr;
+}
+
+std::vector<own_bullet> session::own_bullets() const {
+    std::vector<own_bullet> out;
+    if (!predictor_ || !config_) return out;
+    const bots::own_shots& shots = predictor_->shots();
+    const std::uint32_t now = predictor_->last_sequence();
+    // The world's steps of a free body: x += v·Δt, then back into a wrapping world.
+    const auto fly = [&](std::uint32_t body_id, std::uint32_t sequence, world::vec2 at, world::vec2 velocity,
+                         std::uint32_t steps) {
+        world::body b;
+        b.position = at;
+        b.velocity = velocity;
+        for (std::uint32_t k = 0; k < steps; ++k) {
+            world::integrate_position(b, config_->dt);
+            world::wrap_position(b, *config_);
+        }
+        out.push_back({body_id, sequence, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y()});
+    };
+    for (const bots::own_shots::confirmed_shot& c : shots.confirmed()) {
+        const auto at = std::lower_bound(view_.begin(), view_.end(), c.body_id,
+                                         [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
+        if (at == view_.end() || at->id() != c.body_id) continue;
+        // The view is the world after the step that took input view_ack_.
+        fly(c.body_id, c.sequence, {at->x(), at->y()}, {at->vx(), at->vy()}, now - view_ack_);
+    }
+    std::sort(out.begin(), out.end(), [](const own_bullet& a, const own_bullet& b) { return a.body_id < b.body_id; });
+    // A predicted spawn is where the bullet was before the step of the input that fired it.
+    for (const bots::predicted_shot& p : shots.waiting())
+        fly(0, p.sequence, p.position, p.velocity, now - p.sequence + 1);
+    return out;
 }
 
 std::span<const std::uint8_t> session::hello(std::string_view name, std::string_view token) {

@@ -27,6 +27,18 @@
 
 namespace arena::sdk {
 
+// One of the player's own bullets, where the prediction has it now (after the last input
+// sent), as the own ship is drawn: a confirmed one (`body_id`, its body in the view) moved on
+// from the newest snapshot, a predicted one the server has not shown yet (`body_id` 0) from
+// its spawn. Drawn from the newest view, a bullet would appear a round trip and the
+// interpolation delay behind the ship that fired it.
+struct own_bullet {
+    std::uint32_t body_id = 0;
+    std::uint32_t sequence = 0;  // the input that fired it
+    float x = 0, y = 0;          // m
+    float vx = 0, vy = 0;        // m/s
+};
+
 class session {
 public:
     // delta_snapshots: ask for delta snapshots (Hello.delta_snapshots). spectator: join to
@@ -74,6 +86,11 @@ public:
     [[nodiscard]] const std::vector<protocol::static_body>& statics() const { return statics_; }
     // The own body as predicted for the last input sent; null before a snapshot placed it.
     [[nodiscard]] const world::body* predicted() const;
+    // The own bullets (Asteroids: own_shots.hpp) where the prediction has them now, confirmed
+    // ones by increasing body id, then predicted ones oldest first. A bullet flies free (no
+    // drag, no gravity, no steering), so it is moved by the world's own integration, wrapping
+    // included: bit for bit the server's flight until the bullet hits something.
+    [[nodiscard]] std::vector<own_bullet> own_bullets() const;
     // The prediction error of the newest snapshot (m), when it measured one.
     [[nodiscard]] std::optional<float> prediction_error() const { return prediction_error_; }
     [[nodiscard]] std::uint32_t last_sequence() const { return predictor_ ? predictor_->last_sequence() : 0; }

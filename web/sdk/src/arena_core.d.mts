@@ -46,6 +46,8 @@ export interface CoreModule {
   _arena_statics(session: number): number;
   _arena_static_count(session: number): number;
   _arena_predicted(session: number): number;
+  _arena_own_bullets(session: number): number;
+  _arena_own_bullet_count(session: number): number;
   _arena_prediction_error(session: number): number;
 
   _arena_replay_open(path: number): number;

@@ -6,7 +6,7 @@
 import { BodyState, Core, CoreModuleOptions, Payload, Shape, StaticBody } from './core.js';
 import { Interpolator, InterpolationOptions } from './interpolation.js';
 import { ByeFields, GameEvent, PlayerLine, WelcomeFields, readBye, readMessage, readPong, readReject, readSnapshotExtras, readWelcome } from './messages.js';
-import { CoreSession } from './session.js';
+import { CoreSession, OwnBullet } from './session.js';
 import { CorrectionSmoother, SmoothingOptions } from './smoothing.js';
 
 /** The part of the browser's WebSocket the SDK uses; tests hand in a fake one. */
@@ -63,8 +63,13 @@ export interface DrawBody extends BodyState {
 }
 
 export interface RenderState {
+  /** The own ship and the own bullets the server confirmed are drawn where the prediction has
+   *  them now (predicted: true), the other bodies interpolated. */
   bodies: DrawBody[];
   own: DrawBody | null;
+  /** The own shots predicted and not yet in a snapshot (Asteroids), where they are now: a
+   *  bullet appears as its shot is fired, not a round trip later. */
+  shots: OwnBullet[];
   statics: StaticBody[];
   /** The server time drawn for the interpolated bodies, ms. */
   serverTime: number;
@@ -169,11 +174,32 @@ export class ArenaClient {
   /** What to draw at `renderTime` (ms, the clock of options.now): the own body predicted and
    *  smoothed, every other body interpolated from the snapshot buffer. */
   stateAt(renderTime: number = this.now()): RenderState {
-    if (!this.welcome || !this.interpolator) return { bodies: [], own: null, statics: [], serverTime: 0, extrapolated: 0 };
+    if (!this.welcome || !this.interpolator) return { bodies: [], own: null, shots: [], statics: [], serverTime: 0, extrapolated: 0 };
     const sampled = this.interpolator.sample(renderTime);
     const own = this.session.entityId;
     const bodies: DrawBody[] = [];
-    for (const b of sampled.bodies) if (b.id !== own) bodies.push(this.decorate(b, false));
+    // The own bullets as the prediction has them now: drawn from the snapshots, they would lag
+    // the ship that fired them by the round trip and the interpolation delay.
+    const bullets = this.session.ownBullets();
+    const confirmed = new Map<number, OwnBullet>();
+    const shots: OwnBullet[] = [];
+    for (const b of bullets) {
+      if (b.bodyId === 0) shots.push(b);
+      else confirmed.set(b.bodyId, b);
+    }
+    for (const b of sampled.bodies) {
+      if (b.id === own) continue;
+      const now = confirmed.get(b.id);
+      if (!now) {
+        bodies.push(this.decorate(b, false));
+        continue;
+      }
+      bodies.push(this.decorate({ ...b, x: now.x, y: now.y, vx: now.vx, vy: now.vy }, true));
+      confirmed.delete(b.id);
+    }
+    // Confirmed bullets younger than the interpolated time: in no sampled snapshot yet.
+    for (const b of confirmed.values())
+      bodies.push(this.decorate({ id: b.bodyId, owner: 0, x: b.x, y: b.y, vx: b.vx, vy: b.vy, angle: 0, angularVelocity: 0 }, true));
     let ownBody: DrawBody | null = null;
     const p = this.session.predicted();
     // Drawn only while the server shows it: after the ship is lost, the prediction is stale.
@@ -182,7 +208,7 @@ export class ArenaClient {
       ownBody = this.decorate({ id: own, owner: this.session.playerId, ...drawn }, true);
       bodies.push(ownBody);
     }
-    return { bodies, own: ownBody, statics: this.welcome.statics, serverTime: sampled.serverTime, extrapolated: sampled.extrapolated };
+    return { bodies, own: ownBody, shots, statics: this.welcome.statics, serverTime: sampled.serverTime, extrapolated: sampled.extrapolated };
   }
 
   /** Ticks whose input was left out because the server kept too many waiting (input

@@ -6,7 +6,7 @@ export type { BodyState, Shape, StaticBody, ReplayResult, CoreModuleOptions } fr
 export { ReplayPlayer } from './player.js';
 export type { PlayerBody } from './player.js';
 export { CoreSession } from './session.js';
-export type { PredictedBody } from './session.js';
+export type { OwnBullet, PredictedBody } from './session.js';
 export { Interpolator, shortest, wrapAngle } from './interpolation.js';
 export type { InterpolationOptions, Sampled } from './interpolation.js';
 export { CorrectionSmoother } from './smoothing.js';

@@ -12,6 +12,19 @@ export interface PredictedBody {
   angularVelocity: number;
 }
 
+/** One of the player's own bullets where the prediction has it now, as the own ship is drawn
+ *  (Asteroids: the shots the core predicts). `bodyId` is its body in the view once the server
+ *  confirmed it, 0 while the bullet is predicted only. */
+export interface OwnBullet {
+  bodyId: number;
+  /** The input that fired it. */
+  sequence: number;
+  x: number;
+  y: number;
+  vx: number;
+  vy: number;
+}
+
 export class CoreSession {
   private readonly core: Core;
   private handle: number;
@@ -139,6 +152,33 @@ export class CoreSession {
       angle: d.getFloat32(16, true),
       angularVelocity: d.getFloat32(20, true),
     };
+  }
+  /** The own bullets where the prediction has them now: confirmed ones (moved on from the
+   *  newest snapshot by the world's own steps) by increasing bodyId, then predicted ones. */
+  ownBullets(): OwnBullet[] {
+    const m = this.core.module;
+    const p = m._arena_own_bullets(this.handle);
+    const count = m._arena_own_bullet_count(this.handle);
+    const d = this.core.view(p, 24 * count);
+    const out: OwnBullet[] = [];
+    for (let i = 0; i < count; ++i) {
+      const at = 24 * i;
+      out.push({
+        bodyId: d.getUint32(at, true),
+        sequence: d.getUint32(at + 4, true),
+        x: d.getFloat32(at + 8, true),
+        y: d.getFloat32(at + 12, true),
+        vx: d.getFloat32(at + 16, true),
+        vy: d.getFloat32(at + 20, true),
+      });
+    }
+    return out;
+  }
+  /** The raw bytes of ownBullets() (24 each), for exact comparisons. */
+  ownBulletsBytes(): Uint8Array {
+    const m = this.core.module;
+    const p = m._arena_own_bullets(this.handle);
+    return this.core.bytes(p, 24 * m._arena_own_bullet_count(this.handle));
   }
   /** The 24 raw bytes of predicted(), for exact comparisons; null as predicted(). */
   predictedBytes(): Uint8Array | null {

@@ -14,7 +14,16 @@ const recorded = JSON.parse(fs.readFileSync(path.join(fixtures, 'session.json'),
 test('the WebAssembly session answers every call of a native session over a real match identically', async () => {
   const core = await loadCore();
   const session = new sdk.CoreSession(core);
-  let snapshots = 0, deltas = 0, predicted = 0, inputs = 0, views = 0;
+  let snapshots = 0, deltas = 0, predicted = 0, inputs = 0, views = 0, shots = 0;
+  // The own bullets where the prediction has them, bit for bit the native build's; counts the
+  // calls after which one was predicted only, and after which one was confirmed.
+  const predictedOnly = new Set(), confirmed = new Set();
+  const checkBullets = (call, where) => {
+    assert.deepEqual(session.ownBulletsBytes(), fromBase64(call.bullets), `${where}: the own bullets`);
+    const bullets = session.ownBullets();
+    for (const b of bullets) (b.bodyId === 0 ? predictedOnly : confirmed).add(b.sequence);
+    return bullets.length > 0 ? 1 : 0;
+  };
   for (const [i, call] of recorded.calls.entries()) {
     const where = `call ${i}`;
     if (call.hello) {
@@ -22,6 +31,7 @@ test('the WebAssembly session answers every call of a native session over a real
     } else if (call.input) {
       assert.deepEqual(session.input(...call.input), fromBase64(call.out), where);
       ++inputs;
+      shots += checkBullets(call, where);
     } else {
       const frame = fromBase64(call.feed);
       assert.equal(session.feed(frame), call.type, `${where}: ${session.error()}`);
@@ -34,6 +44,7 @@ test('the WebAssembly session answers every call of a native session over a real
         assert.equal(session.shapes().length, call.shapes, where);
         if (session.deltaAck !== 0) ++deltas;
       }
+      shots += checkBullets(call, where);
       if (call.predicted) {
         assert.deepEqual(session.predictedBytes(), fromBase64(call.predicted), `${where}: the predicted body`);
         ++predicted;
@@ -46,6 +57,9 @@ test('the WebAssembly session answers every call of a native session over a real
   assert.equal(recorded.dropped, 2, 'two snapshots lost on the way');
   assert.ok(snapshots > 150 && deltas > 100 && predicted > 100 && inputs > 500,
             `snapshots ${snapshots}, with a delta ack ${deltas}, predicted ${predicted}, inputs ${inputs}`);
+  // Shots were fired, seen first as predicted and then as the server's bullets.
+  const both = [...predictedOnly].filter((s) => confirmed.has(s));
+  assert.ok(shots > 50 && both.length >= 5, `calls with own bullets ${shots}, shots predicted then confirmed ${both.length}`);
   assert.ok(session.shapes().length > 0, 'the view holds shapes');
   session.dispose();
 });
