@@ -86,6 +86,38 @@ bool same_body(const world::body& a, const world::body& b) {
            same_bits(a.angle, b.angle) && same_bits(a.angular_velocity, b.angular_velocity);
 }
 
+// Snapshots on their way to the client: the server's state after a tick (the own ship, the
+// view and the origins of the bullets that appeared since the last one), each arriving at a
+// chosen tick of the client's.
+class snapshot_wire {
+public:
+    // A snapshot of `server` now, acknowledging input `ack`, arriving at tick `arrives`.
+    void send(std::uint32_t arrives, server_game& server, std::uint32_t ack) {
+        in_flight_.push_back({arrives, server.w.tick(), ack, state_of(*server.w.find(server.ship)), server.view(),
+                              std::move(server.origins)});
+        server.origins.clear();
+    }
+    // Hands `p` every snapshot that arrived by tick `now`.
+    void deliver(std::uint32_t now, predictor& p) {
+        while (!in_flight_.empty() && in_flight_.front().arrives <= now) {
+            const in_flight& f = in_flight_.front();
+            REQUIRE(p.on_snapshot(f.tick, f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
+            in_flight_.pop_front();
+        }
+    }
+
+private:
+    struct in_flight {
+        std::uint32_t arrives;
+        std::uint32_t tick;
+        std::uint32_t ack;
+        BodyState own;
+        std::vector<BodyState> view;
+        std::vector<ShotOrigin> origins;
+    };
+    std::deque<in_flight> in_flight_;
+};
+
 // A random walk that holds fire on most ticks: the cooldown and the cap decide the shots.
 world::player_input firing(behavior& drive, const predictor& p, std::uint32_t sequence) {
     world::player_input in = drive.next({p.body()});
@@ -103,23 +135,10 @@ TEST_CASE("with no loss the predicted ship is bit-exact while firing, and every 
     predictor p(server.w.config(), server.ship, player);
     behavior drive(behavior_kind::random, 5, 1, server.w.config());
 
-    struct in_flight {
-        std::uint32_t arrives;
-        std::uint32_t tick;
-        std::uint32_t ack;
-        BodyState own;
-        std::vector<BodyState> view;
-        std::vector<ShotOrigin> origins;
-    };
-    std::deque<in_flight> wire;
-    const std::vector<BodyState> first = server.view();
-    wire.push_back({0, server.w.tick(), 0, state_of(*server.w.find(server.ship)), first, {}});
+    snapshot_wire wire;
+    wire.send(0, server, 0);
     for (std::uint32_t t = 0; t <= 900; ++t) {
-        while (!wire.empty() && wire.front().arrives <= t) {
-            const in_flight& f = wire.front();
-            REQUIRE(p.on_snapshot(f.tick, f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
-            wire.pop_front();
-        }
+        wire.deliver(t, p);
         const std::uint32_t s = t + 1;
         const world::player_input in = firing(drive, p, s);
         p.on_input(s, in);
@@ -127,10 +146,7 @@ TEST_CASE("with no loss the predicted ship is bit-exact while firing, and every 
         const world::body* ship = server.w.find(server.ship);
         REQUIRE(ship != nullptr);  // nothing may hit it: the test is about a lone ship
         if (p.body() != nullptr) REQUIRE(same_body(*p.body(), *ship));  // the recoil included
-        if (s % interval == 0) {
-            wire.push_back({s + delay, server.w.tick(), s, state_of(*ship), server.view(), std::move(server.origins)});
-            server.origins.clear();
-        }
+        if (s % interval == 0) wire.send(s + delay, server, s);
     }
     const arena::bots::shot_counts& counts = p.shots().counts();
     const std::uint32_t fired = server.r.scoreboard()[0].shots;
@@ -194,25 +210,13 @@ TEST_CASE("after late inputs the server repeated a tick for, the gun still count
     server_game server(asteroids_game());
     predictor p(server.w.config(), server.ship, player);
     behavior drive(behavior_kind::random, 5, 1, server.w.config());
-    struct in_flight {
-        std::uint32_t arrives;
-        std::uint32_t tick;
-        std::uint32_t ack;
-        BodyState own;
-        std::vector<BodyState> view;
-        std::vector<ShotOrigin> origins;
-    };
-    std::deque<in_flight> wire;
-    wire.push_back({0, server.w.tick(), 0, state_of(*server.w.find(server.ship)), server.view(), {}});
+    snapshot_wire wire;
+    wire.send(0, server, 0);
     std::deque<std::pair<std::uint32_t, world::player_input>> waiting;  // sent, not yet taken
     std::pair<std::uint32_t, world::player_input> last{0, {}};
     std::uint32_t underruns = 0;
     for (std::uint32_t t = 0; t <= 1800; ++t) {
-        while (!wire.empty() && wire.front().arrives <= t) {
-            const in_flight& f = wire.front();
-            REQUIRE(p.on_snapshot(f.tick, f.ack, &f.own, f.view, f.origins).problem == predictor::ack_problem::none);
-            wire.pop_front();
-        }
+        wire.deliver(t, p);
         const std::uint32_t s = t + 1;
         const world::player_input in = firing(drive, p, s);
         p.on_input(s, in);
@@ -225,11 +229,7 @@ TEST_CASE("after late inputs the server repeated a tick for, the gun still count
         }
         server.step(last.first, last.second);
         REQUIRE(server.w.find(server.ship) != nullptr);
-        if (server.w.tick() % 3 == 0) {
-            wire.push_back({t + 4, server.w.tick(), last.first, state_of(*server.w.find(server.ship)), server.view(),
-                            std::move(server.origins)});
-            server.origins.clear();
-        }
+        if (server.w.tick() % 3 == 0) wire.send(t + 4, server, last.first);
     }
     const arena::bots::shot_counts& counts = p.shots().counts();
     const std::uint32_t fired = server.r.scoreboard()[0].shots;
