@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "protocol/decode.hpp"
 #include "server/world/broadphase.hpp"
 #include "server/world/splitmix64.hpp"
 #include "server/world/trig.hpp"
@@ -128,10 +129,7 @@ void behavior::observe(std::span<const protocol::BodyState> bodies, std::uint32_
     if (kind_ == behavior_kind::hunter) observe_prey(bodies, own_id);
     if (kind_ != behavior_kind::seek) return;
     if (target_id_ != 0) {
-        // Bodies come in increasing id order: a binary search, not a scan of every body.
-        const auto at = std::lower_bound(bodies.begin(), bodies.end(), target_id_,
-                                         [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
-        if (at != bodies.end() && at->id() == target_id_) {
+        if (const protocol::BodyState* at = protocol::find_body(bodies, target_id_)) {
             target_ = vec2{at->x(), at->y()};
             return;
         }
@@ -157,10 +155,9 @@ player_input behavior::seek(const world::body& own) {
 }
 
 void behavior::observe_prey(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {
-    const auto own = std::lower_bound(bodies.begin(), bodies.end(), own_id,
-                                      [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
+    const protocol::BodyState* own = protocol::find_body(bodies, own_id);
     prey_.reset();
-    if (own == bodies.end() || own->id() != own_id) return;
+    if (own == nullptr) return;
     const vec2 at{own->x(), own->y()};
     const vec2 moving{own->vx(), own->vy()};
     float nearest = 0;

@@ -172,10 +172,7 @@ void client_core::on_snapshot(const protocol::Message& message, time_ns now) {
     m.view_bodies += bodies.size();
     check_shapes(bodies);
 
-    // Bodies come in increasing id order: a binary search, not a scan of every body.
-    const auto at = std::lower_bound(bodies.begin(), bodies.end(), entity_id_,
-                                     [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
-    const protocol::BodyState* own = (at != bodies.end() && at->id() == entity_id_) ? &*at : nullptr;
+    const protocol::BodyState* own = protocol::find_body(bodies, entity_id_);
     const predictor::correction c =
         predictor_->on_snapshot(snapshot.tick, snapshot.ack_sequence, own, bodies, snapshot.shot_origins);
     if (c.problem != predictor::ack_problem::none && !outcome_.misbehaving) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "protocol/decode.hpp"
 #include "server/world/broadphase.hpp"
 
 namespace arena::bots {
@@ -15,12 +16,6 @@ bool same_bits(const world::vec2& a, float x, float y) {
     const float predicted[2] = {a.x(), a.y()};
     const float server[2] = {x, y};
     return std::memcmp(predicted, server, sizeof predicted) == 0;
-}
-
-bool in_view(std::span<const protocol::BodyState> view, std::uint32_t id) {
-    const auto at = std::lower_bound(view.begin(), view.end(), id,
-                                     [](const protocol::BodyState& b, std::uint32_t v) { return b.id() < v; });
-    return at != view.end() && at->id() == id;
 }
 
 }  // namespace
@@ -90,7 +85,7 @@ own_shots::gun own_shots::on_snapshot(std::uint32_t tick, std::uint32_t ack,
     counts_.unconfirmed += static_cast<std::uint64_t>(
         std::erase_if(waiting_, [ack](const predicted_shot& p) { return p.sequence <= ack; }));
     // A confirmed bullet no longer in view is gone: it hit something, or its lifetime ended.
-    std::erase_if(confirmed_, [&](const confirmed_shot& c) { return !in_view(view, c.body_id); });
+    std::erase_if(confirmed_, [&](const confirmed_shot& c) { return protocol::find_body(view, c.body_id) == nullptr; });
     if (last_confirmed_) g.next_fire = sequence_at(last_confirmed_tick_ + params_.fire_cooldown_ticks);
     for (const confirmed_shot& c : confirmed_) g.live.push_back(sequence_at(c.tick));
     return g;

@@ -2,6 +2,7 @@
 
 #include "protocol/snapshot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -174,6 +175,12 @@ result<snapshot_view> decode_snapshot(const Message& message) {
         }
     }
     return result<snapshot_view>::success(view);
+}
+
+const BodyState* find_body(std::span<const BodyState> bodies, std::uint32_t id) {
+    const auto at = std::lower_bound(bodies.begin(), bodies.end(), id,
+                                     [](const BodyState& b, std::uint32_t v) { return b.id() < v; });
+    return at != bodies.end() && at->id() == id ? &*at : nullptr;
 }
 
 }  // namespace arena::protocol

@@ -44,6 +44,10 @@ struct snapshot_view {
 };
 [[nodiscard]] result<snapshot_view> decode_snapshot(const Message& message);
 
+// The body `id` of `bodies` (in increasing id order, as a snapshot's view), or null when it is
+// not there: a binary search, not a scan of every body.
+[[nodiscard]] const BodyState* find_body(std::span<const BodyState> bodies, std::uint32_t id);
+
 // "Hello", "Input", ... for logs; "unknown" outside the schema.
 [[nodiscard]] std::string_view payload_name(Payload type) noexcept;
 

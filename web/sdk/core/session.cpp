@@ -164,9 +164,7 @@ protocol::Payload session::on_snapshot(const protocol::Message& message) {
         }
     }
 
-    const auto at = std::lower_bound(view_.begin(), view_.end(), entity_id_,
-                                     [](const protocol::BodyState& body, std::uint32_t id) { return body.id() < id; });
-    const protocol::BodyState* own = (at != view_.end() && at->id() == entity_id_) ? &*at : nullptr;
+    const protocol::BodyState* own = protocol::find_body(view_, entity_id_);
     // The view and the shot origins: the own shots are predicted too (own_shots.hpp).
     const bots::predictor::correction c =
         predictor_->on_snapshot(snapshot.tick, snapshot.ack_sequence, own, view_, snapshot.shot_origins);
@@ -201,9 +199,8 @@ std::vector<own_bullet> session::own_bullets() const {
         out.push_back({body_id, sequence, b.position.x(), b.position.y(), b.velocity.x(), b.velocity.y()});
     };
     for (const bots::own_shots::confirmed_shot& c : shots.confirmed()) {
-        const auto at = std::lower_bound(view_.begin(), view_.end(), c.body_id,
-                                         [](const protocol::BodyState& b, std::uint32_t id) { return b.id() < id; });
-        if (at == view_.end() || at->id() != c.body_id) continue;
+        const protocol::BodyState* at = protocol::find_body(view_, c.body_id);
+        if (at == nullptr) continue;
         // The view is the world after the step that took input view_ack_.
         fly(c.body_id, c.sequence, {at->x(), at->y()}, {at->vx(), at->vy()}, now - view_ack_);
     }
