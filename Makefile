@@ -30,7 +30,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libfla
 # so these are installed only when there is no `npm` command.
 NPM_PACKAGES := nodejs npm
 
-.PHONY: all deps build run test test-fast bench bench-deps bench-e2e bench-loss clean fuzz lint-docker format format-check
+.PHONY: all deps build timed-build run test test-fast bench bench-deps bench-e2e bench-loss clean fuzz lint-docker format format-check
 
 all: build
 
@@ -61,13 +61,17 @@ SANITIZER_EXCLUDED_TESTS := ^(out of descriptors the accept loop|ops http: out o
 
 # Release tests, then the same tests under AddressSanitizer + UBSan, then the cross-compiler
 # determinism check. The Dockerfile is linted first: no Docker engine runs here to build it.
-test: build format-check lint-docker
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300
+# Each stage prints how long it took (scripts/timed.sh), so a CI log shows where the time goes.
+test: timed-build format-check lint-docker
+	./scripts/timed.sh "release tests" bash -c 'cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 300'
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARENA_SANITIZE=ON -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_SDK=OFF $(CMAKE_FLAGS)
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600 -E '$(SANITIZER_EXCLUDED_TESTS)'
-	./scripts/determinism-check.sh $(BUILD)
-	$(MAKE) fuzz
+	./scripts/timed.sh "sanitizer build" cmake --build $(ASAN_BUILD) -j $(JOBS)
+	./scripts/timed.sh "sanitizer tests" bash -c "cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) --timeout 600 -E '$(SANITIZER_EXCLUDED_TESTS)'"
+	./scripts/timed.sh "determinism check" ./scripts/determinism-check.sh $(BUILD)
+	./scripts/timed.sh "fuzzing" $(MAKE) fuzz
+
+timed-build: deps $(BUILD)/build.ninja
+	./scripts/timed.sh "release build" cmake --build $(BUILD) -j $(JOBS)
 
 # libFuzzer (clang++-14, with ASan and UBSan) on the frame reader and message handling, the
 # replay-file reader (its checks, and its cost in world steps), the config loader, the delta
