@@ -86,12 +86,8 @@ result<input_msg> decode_input(const Message& message) {
     const auto* t = message.payload_as<Input>();
     if (t == nullptr) return result<input_msg>::failure(unexpected(message, Payload::Input));
     input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons(), t->snapshot_ack(), {}};
-    if (!std::isfinite(in.thrust)) {
-        return result<input_msg>::failure("Input.thrust is not finite");
-    }
-    if (!std::isfinite(in.turn)) {
-        return result<input_msg>::failure("Input.turn is not finite");
-    }
+    // Whether the numbers are finite is admission's question (world::check_input), asked once
+    // for the Input and its earlier list: the decoder reads the structure.
     if (const auto* earlier = t->earlier()) {
         if (earlier->size() > max_earlier_inputs)
             return result<input_msg>::failure("Input.earlier holds " + std::to_string(earlier->size()) +
@@ -101,8 +97,6 @@ result<input_msg> decode_input(const Message& message) {
         for (const EarlierInput* e : *earlier) {
             if (e->sequence() <= previous || e->sequence() >= in.sequence)
                 return result<input_msg>::failure("Input.earlier: sequences must rise and stay below the Input's own");
-            if (!std::isfinite(e->thrust()) || !std::isfinite(e->turn()))
-                return result<input_msg>::failure("Input.earlier holds a value that is not finite");
             previous = e->sequence();
             in.earlier.push_back({e->sequence(), e->thrust(), e->turn(), e->buttons()});
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "server/world/assert.hpp"
 #include "server/world/forces.hpp"
 #include "server/world/hash.hpp"
 #include "server/world/integrate.hpp"
@@ -118,7 +119,10 @@ void world::apply_inputs(const tick_inputs& inputs) {
                      [](const body_input* l, const body_input* r) { return l->body_id < r->body_id; });
     for (const body_input* in : ordered) {
         body* b = find(in->body_id);
-        if (!b || check_input(in->input)) continue;
+        if (!b) continue;
+        // Non-finite inputs are refused where they enter: admission for the network, the
+        // replay reader for files. Clamped here, a NaN would stay NaN and spread.
+        ARENA_ASSERT(!check_input(in->input), "an input reached the world without passing check_input");
         apply_player_input(*b, clamp_input(in->input), config_.control, on_ground(*b));
     }
 }

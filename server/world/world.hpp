@@ -69,7 +69,7 @@ public:
     shape shape_of(const body& b) const;
 
     // Advances one fixed Δt (in config().substeps sub-steps when more than 1, see
-    // soft_solver.hpp). Inputs must have passed check_input (they are clamped here);
+    // soft_solver.hpp). Inputs must have passed check_input (asserted; they are clamped here);
     // inputs for unknown bodies are ignored.
     void step(const tick_inputs& inputs);
 

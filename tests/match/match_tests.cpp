@@ -19,6 +19,7 @@ struct fake_client : match::connection {
     std::vector<uint32_t> snapshot_acks;
     std::vector<uint32_t> snapshot_ticks;
     std::optional<protocol::RejectCode> rejected;
+    std::string reason;
     void send(protocol::frame_bytes frame) override { frames.push_back(std::move(frame)); }
     void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
         send_snapshot_frame(s.frame_with_ack(ack));
@@ -29,7 +30,10 @@ struct fake_client : match::connection {
         snapshot_acks.push_back(snap.ack_sequence);
         snapshot_ticks.push_back(snap.tick);
     }
-    void close(protocol::RejectCode code, std::string_view) override { rejected = code; }
+    void close(protocol::RejectCode code, std::string_view why) override {
+        rejected = code;
+        reason = why;
+    }
     std::string bye;
     void close_with_bye(std::string_view reason) override { bye = reason; }
     std::string_view peer() const override { return "test"; }
@@ -104,6 +108,7 @@ TEST_CASE("a NaN input and an input flood are refused", "[match]") {
     REQUIRE_FALSE(send_input(g, c, {1, std::numeric_limits<float>::quiet_NaN(), 0, 0}));
     REQUIRE(c.rejected);
     CHECK(*c.rejected == protocol::RejectCode::bad_input);
+    CHECK(c.reason == "thrust is not a finite number");  // admission's one check, world::check_input
     fake_client d;
     REQUIRE(join(g, d, hello()) != 0);
     g.tick();

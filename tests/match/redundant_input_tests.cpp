@@ -101,7 +101,7 @@ TEST_CASE("an Input's earlier list out of order, too long or not finite is refus
         {"not rising", input(5, {3, 2}), "sequences must rise"},
         {"not below the Input's own", input(5, {4, 5}), "sequences must rise"},
         {"more than 8", input(20, {1, 2, 3, 4, 5, 6, 7, 8, 9}), "more than 8"},
-        {"not finite", not_finite, "not finite"},
+        {"not finite", not_finite, "earlier input 4: turn is not a finite number"},
     };
     for (const bad_case& bad : cases) {
         INFO(bad.what);
