@@ -43,6 +43,7 @@ bool udp_peer_connection::receive(std::span<const uint8_t> datagram, int64_t arr
         return false;
     }
     owner_.count_message_in();
+    if (verified.value->payload_type() == protocol::Payload::Hello) said_hello_ = true;
     const bool go_on = owner_.match().receive(*this, *verified.value, arrival_ns);
     reader_.next();
     if (!go_on) close_after({});  // a Bye from the client; after a refusal this changes nothing

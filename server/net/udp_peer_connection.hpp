@@ -44,6 +44,8 @@ public:
     bool closing() const { return closing_; }
     int64_t closing_since_ns() const { return closing_since_ns_; }
     uint64_t id() const { return id_; }
+    // Its Hello reached the match: from now on it may send what ENet holds for later (fragments).
+    bool said_hello() const { return said_hello_; }
     ENetPeer* enet_peer() const { return peer_; }
     // Sends the pending copy of the last snapshot when its time came (udp_options::snapshot_copies).
     void send_due_copy(int64_t now_ns);
@@ -65,6 +67,7 @@ private:
     uint32_t copies_left_ = 0;       // times it is still to go
     int64_t copy_due_ns_ = 0;        // not before
     bool closing_ = false;
+    bool said_hello_ = false;
     int64_t closing_since_ns_ = 0;
 };
 
