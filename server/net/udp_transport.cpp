@@ -76,7 +76,7 @@ int64_t udp_transport::tick_ns() const {
 }
 
 void udp_transport::send_due_copies() {
-    if (options_.snapshot_copies <= 1) return;
+    if (options_.snapshot_copies == 1) return;
     const int64_t now = now_ns();
     for (auto& [id, c] : connections_) c->send_due_copy(now);
 }
@@ -106,8 +106,14 @@ void udp_transport::start() {
     readable_.assign(fd);
     std::printf("udp listening on %s:%u\n", bind.c_str(), port_);
     std::fflush(stdout);
-    log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
-             bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
+    if (options_.snapshot_copies == 0)
+        log_line(
+            "udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent 1 or 2 "
+            "times by each client's loss",
+            bind.c_str(), port_, peers, options_.snapshot_budget);
+    else
+        log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
+                 bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
     wait_readable();
     arm_timer();
 }

@@ -178,10 +178,14 @@ std::map<uint32_t, int> snapshot_ticks(udp_client& c, std::chrono::milliseconds 
     return seen;
 }
 
-TEST_CASE("each UDP snapshot goes twice with --udp-snapshot-copies 2, once by default", "[net][udp]") {
-    const int copies = GENERATE(1, 2);
-    udp_server server(copies == 2 ? std::vector<std::string>{"--udp-snapshot-copies", "2"}
-                                  : std::vector<std::string>{});
+TEST_CASE("each UDP snapshot goes twice with --udp-snapshot-copies 2, once by default and with auto on loopback",
+          "[net][udp]") {
+    // 0: auto; this client acknowledges no snapshot (and loopback loses none): once.
+    const int setting = GENERATE(1, 2, 0);
+    const int copies = setting == 2 ? 2 : 1;
+    udp_server server(setting == 2   ? std::vector<std::string>{"--udp-snapshot-copies", "2"}
+                      : setting == 0 ? std::vector<std::string>{"--udp-snapshot-copies", "auto"}
+                                     : std::vector<std::string>{});
     udp_client c(server.udp_port);
     join(c);
     const std::map<uint32_t, int> seen = snapshot_ticks(c, 1000ms);
