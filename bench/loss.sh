@@ -9,7 +9,8 @@
 # leaves one of them once. One table.
 # Env: LOSS_PERCENT ("0 1 2 5 10"), LOSS_LATENCY_MS ("0 50 100"), LOSS_SECONDS (8),
 #      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp udp2"; udp2 is UDP with each snapshot sent
-#      twice, a tick apart: --udp-snapshot-copies 2), LOSS_WORK (a folder that keeps each run's
+#      twice, a tick apart: --udp-snapshot-copies 2; udpauto: --udp-snapshot-copies auto, a
+#      second copy per client while its loss is above 1 %), LOSS_WORK (a folder that keeps each run's
 #      bots' --json LABEL.json and server's --stats-json LABEL.stats.json, LABEL being
 #      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed), LOSS_NICE (-10: the nice
 #      value of the link, the server and the bots).
@@ -72,6 +73,7 @@ run() {
   local transport=$1 permille=$2 latency=$3 label=$4 ns
   local -a copies=()
   if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
+  if [ "$transport" = udpauto ]; then transport=udp; copies=(--udp-snapshot-copies auto); fi
   connect "$permille" "$latency" "$label"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \

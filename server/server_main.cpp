@@ -46,11 +46,13 @@ int main(int argc, char** argv) {
     app.add_option("--allowed-origin", web.allowed_origins,
                    "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
                    "repeatable (default: any)");
-    uint32_t udp_snapshot_copies = 1;
+    std::string udp_snapshot_copies = "1";
     app.add_option("--udp-snapshot-copies", udp_snapshot_copies,
-                   "send each UDP snapshot this many times, a tick apart: a lost one is replaced by its copy, "
-                   "for that many times the downstream bytes (default 1: no copy)")
-        ->check(CLI::Range(1, 3));
+                   "send each UDP snapshot this many times (1 to 3), a tick apart: a lost one is replaced by its "
+                   "copy, for that many times the downstream bytes; or 'auto': per client, twice while the "
+                   "loss measured from its snapshot acks is above about 1 % (for 30 s at a time, then measured "
+                   "again), else once (default 1: no copy)")
+        ->check(CLI::IsMember({"1", "2", "3", "auto"}));
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
     app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
@@ -223,7 +225,10 @@ int main(int argc, char** argv) {
         if (udp_port >= 0) {
             udp.emplace(
                 io, server,
-                net::udp_options{.port = static_cast<uint16_t>(udp_port), .snapshot_copies = udp_snapshot_copies});
+                net::udp_options{.port = static_cast<uint16_t>(udp_port),
+                                 .snapshot_copies = udp_snapshot_copies == "auto"
+                                                        ? 0u
+                                                        : static_cast<uint32_t>(std::stoul(udp_snapshot_copies))});
             udp->start();  // prints "udp listening on HOST:PORT" after the TCP line
         }
         std::optional<net::web_transport> http;

@@ -2,6 +2,7 @@
 // What the server reads of ENet 1.3's datagrams before ENet does (enet/protocol.h), for the
 // connect gate (udp_connect_gate.hpp) and the handshake's completion (udp_handshake.hpp). The
 // constants are repeated here so that both build without ENet (the gate's fuzz target does).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -17,11 +18,19 @@ constexpr int session_shift = 12;
 constexpr std::uint8_t command_mask = 0x0F;
 constexpr std::uint8_t command_acknowledge = 1;
 constexpr std::uint8_t command_connect = 2;
+constexpr std::uint8_t command_send_reliable = 6;
+constexpr std::uint8_t command_send_unreliable = 7;
+constexpr std::uint8_t command_send_fragment = 8;
+constexpr std::uint8_t command_send_unsequenced = 9;
+constexpr std::uint8_t command_send_unreliable_fragment = 12;
 constexpr std::uint8_t control_channel = 0xFF;
 constexpr std::size_t command_header = 4;        // command, channel, reliable sequence number
 constexpr std::size_t connect_command = 48;      // sizeof(ENetProtocolConnect)
 constexpr std::size_t connect_data_offset = 44;  // offsetof(ENetProtocolConnect, data)
 constexpr std::size_t checksum_bytes = 4;        // after the header, on a host that uses one
+// The fixed size of each command by its number (ENet's commandSizes: sizeof its struct, before
+// the data of a send command); 0: no such command, ENet stops reading the datagram there.
+constexpr std::array<std::uint8_t, 13> command_sizes = {0, 8, 48, 44, 8, 4, 6, 8, 24, 8, 12, 16, 24};
 
 }  // namespace arena::net::enet_wire
 

@@ -5,6 +5,7 @@
 
 #include "server/auth/key_window.hpp"
 #include "server/net/enet_wire.hpp"
+#include "server/net/udp_peer_commands.hpp"
 
 namespace arena::net {
 
@@ -84,6 +85,20 @@ gate_verdict connect_gate::judge(std::span<const std::uint8_t> datagram, const s
         return gate_verdict::refuse_rate;
     }
     return gate_verdict::connect;
+}
+
+gate_verdict connect_gate::judge_peer(std::span<const std::uint8_t> datagram, bool said_hello) {
+    switch (judge_peer_commands(datagram, said_hello)) {
+        case peer_commands_verdict::pass:
+            return gate_verdict::pass;
+        case peer_commands_verdict::before_hello:
+            ++refused_before_hello_;
+            return gate_verdict::refuse_before_hello;
+        case peer_commands_verdict::fragment_oversize:
+            ++refused_fragment_;
+            return gate_verdict::refuse_fragment;
+    }
+    return gate_verdict::pass;
 }
 
 void connect_gate::forget_oldest() {

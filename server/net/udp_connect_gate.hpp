@@ -46,11 +46,13 @@ inline constexpr std::size_t min_connect_datagram = 4 + 48;
 
 // What the gate decided about one datagram, and why when it refused.
 enum class gate_verdict : std::uint8_t {
-    pass,          // to a peer slot: ENet judges it
-    connect,       // a connect within its address's rate: ENet takes a peer slot for it, if one is free
-    refuse_shape,  // too short, a connect too small to answer, or not a connect though to no peer
-    refuse_rate,   // a connect over its address's rate
-    refuse_key,    // a connect without an accepted connect key, when keys are required
+    pass,                 // to a peer slot: ENet judges it
+    connect,              // a connect within its address's rate: ENet takes a peer slot for it, if one is free
+    refuse_shape,         // too short, a connect too small to answer, or not a connect though to no peer
+    refuse_rate,          // a connect over its address's rate
+    refuse_key,           // a connect without an accepted connect key, when keys are required
+    refuse_before_hello,  // to a peer that said no Hello: a fragment or a command ENet would hold
+    refuse_fragment,      // to a peer: a fragment claiming more than its length (or a client frame) allows
 };
 
 struct connect_gate_limits {
@@ -83,9 +85,15 @@ public:
     void set_wall_clock(std::int64_t unix_seconds);
     bool requires_connect_key() const { return static_cast<bool>(key_at_); }
 
+    // A datagram that judge() passed to a peer slot, by its commands (udp_peer_commands.hpp):
+    // pass, refuse_before_hello or refuse_fragment. `said_hello`: the peer's Hello reached the match.
+    [[nodiscard]] gate_verdict judge_peer(std::span<const std::uint8_t> datagram, bool said_hello);
+
     std::uint64_t refused_rate() const { return refused_rate_; }
     std::uint64_t refused_shape() const { return refused_shape_; }
     std::uint64_t refused_key() const { return refused_key_; }
+    std::uint64_t refused_before_hello() const { return refused_before_hello_; }
+    std::uint64_t refused_fragment() const { return refused_fragment_; }
     std::size_t addresses() const { return buckets_.size(); }
 
 private:
@@ -97,6 +105,8 @@ private:
     std::uint64_t refused_rate_ = 0;   // connects over an address's rate
     std::uint64_t refused_shape_ = 0;  // too short, or no connect though addressed to no peer
     std::uint64_t refused_key_ = 0;    // connects without an accepted key
+    std::uint64_t refused_before_hello_ = 0;
+    std::uint64_t refused_fragment_ = 0;
 
     std::function<std::uint32_t(std::int64_t)> key_at_;  // empty: no key required
     std::int64_t window_s_ = 1;

@@ -43,6 +43,8 @@ bool udp_peer_connection::receive(std::span<const uint8_t> datagram, int64_t arr
         return false;
     }
     owner_.count_message_in();
+    if (verified.value->payload_type() == protocol::Payload::Hello) said_hello_ = true;
+    if (const protocol::Input* input = verified.value->payload_as_Input()) loss_.acked(input->snapshot_ack());
     const bool go_on = owner_.match().receive(*this, *verified.value, arrival_ns);
     reader_.next();
     if (!go_on) close_after({});  // a Bye from the client; after a refusal this changes nothing
@@ -88,11 +90,17 @@ void udp_peer_connection::send_snapshot_bytes(std::span<const uint8_t> bytes) {
     // and the client keeps acking its older baseline until one does. Delta snapshots are
     // built within the budget (snapshot_budget() above); what still goes over (BodyState
     // snapshots of a crowded view) is counted.
+    // Our own frame (size-prefixed, aligned), verified when it was built: its tick is read as is.
+    if (bytes.size() >= protocol::frame_prefix_size + protocol::min_frame_body) {
+        if (const auto* snapshot = protocol::GetSizePrefixedMessage(bytes.data())->payload_as_Snapshot())
+            loss_.sent(snapshot->tick());
+    }
     if (bytes.size() <= owner_.snapshot_budget()) {
         send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNSEQUENCED);
         // Its copies a tick apart (never at once: a burst of loss would take them together).
         // A newer snapshot replaces the copies of an older one; the client drops duplicates.
-        copies_left_ = owner_.snapshot_copies() > 1 ? owner_.snapshot_copies() - 1 : 0;
+        const uint32_t copies = copies_now();
+        copies_left_ = copies > 1 ? copies - 1 : 0;
         if (copies_left_ > 0) {
             copy_.assign(bytes.begin(), bytes.end());
             copy_due_ns_ = owner_.now_ns() + owner_.tick_ns();
@@ -101,6 +109,11 @@ void udp_peer_connection::send_snapshot_bytes(std::span<const uint8_t> bytes) {
         owner_.count_fragmented_snapshot();
         send_packet(bytes, channel_datagrams, ENET_PACKET_FLAG_UNRELIABLE_FRAGMENT);
     }
+}
+
+uint32_t udp_peer_connection::copies_now() const {
+    const uint32_t configured = owner_.snapshot_copies();
+    return configured == 0 ? loss_.copies() : configured;  // 0: auto
 }
 
 void udp_peer_connection::send_due_copy(int64_t now_ns) {

@@ -12,6 +12,7 @@
 
 #include "protocol/framing.hpp"
 #include "server/match/connection.hpp"
+#include "server/net/snapshot_loss.hpp"
 
 namespace arena::net {
 
@@ -44,9 +45,13 @@ public:
     bool closing() const { return closing_; }
     int64_t closing_since_ns() const { return closing_since_ns_; }
     uint64_t id() const { return id_; }
+    // Its Hello reached the match: from now on it may send what ENet holds for later (fragments).
+    bool said_hello() const { return said_hello_; }
     ENetPeer* enet_peer() const { return peer_; }
     // Sends the pending copy of the last snapshot when its time came (udp_options::snapshot_copies).
     void send_due_copy(int64_t now_ns);
+    // Its snapshot loss, measured from its acks (used with --udp-snapshot-copies auto).
+    const snapshot_loss& loss() const { return loss_; }
     // ENet reset the peer (it is gone): nothing may be sent any more.
     void forget_peer() { peer_ = nullptr; }
 
@@ -54,6 +59,7 @@ private:
     void send_packet(std::span<const uint8_t> bytes, enet_uint8 channel, enet_uint32 flags);
     void send_snapshot_bytes(std::span<const uint8_t> bytes);
     void close_after(const protocol::frame_bytes& last_frame);
+    uint32_t copies_now() const;  // times the next snapshot goes
 
     udp_transport& owner_;
     ENetPeer* peer_;
@@ -65,6 +71,8 @@ private:
     uint32_t copies_left_ = 0;       // times it is still to go
     int64_t copy_due_ns_ = 0;        // not before
     bool closing_ = false;
+    bool said_hello_ = false;
+    snapshot_loss loss_;
     int64_t closing_since_ns_ = 0;
 };
 

@@ -14,14 +14,18 @@
 namespace arena::net {
 
 enum class udp_refusal : std::uint8_t {
-    shape,        // too short, a connect too small to answer, or not a connect though to no peer
-    rate,         // a connect over its address's rate
-    peer_limit,   // a connect while every ENet peer slot is taken
-    connect_key,  // a connect without the server's connect key (only with a token secret)
+    shape,         // too short, a connect too small to answer, or not a connect though to no peer
+    rate,          // a connect over its address's rate
+    peer_limit,    // a connect while every ENet peer slot is taken
+    connect_key,   // a connect without the server's connect key (only with a token secret)
+    half_open,     // a connect from an address already holding its budget of half-open handshakes
+    before_hello,  // to a peer that said no Hello: a fragment or a command ENet would hold
+    fragment,      // a fragment claiming more fragments or bytes than its length allows
 };
-inline constexpr std::size_t udp_refusal_reasons = 4;
+inline constexpr std::size_t udp_refusal_reasons = 7;
 
-// The key of a reason in the counters ("shape", "rate", "peer_limit", "connect_key").
+// The key of a reason in the counters ("shape", "rate", "peer_limit", "connect_key", "half_open",
+// "before_hello", "fragment").
 [[nodiscard]] std::string_view udp_refusal_key(udp_refusal why);
 
 class udp_refusal_log {

@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "protocol/version.hpp"
 #include "server/auth/join_token.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 #include "server/net/udp_handshake.hpp"
+#include "server/net/udp_peer_commands.hpp"
 
 namespace arena::net {
 
@@ -74,7 +76,7 @@ int64_t udp_transport::tick_ns() const {
 }
 
 void udp_transport::send_due_copies() {
-    if (options_.snapshot_copies <= 1) return;
+    if (options_.snapshot_copies == 1) return;
     const int64_t now = now_ns();
     for (auto& [id, c] : connections_) c->send_due_copy(now);
 }
@@ -91,6 +93,12 @@ void udp_transport::start() {
     if (host_ == nullptr)
         throw std::runtime_error("--udp-port: cannot bind UDP " + bind + ":" + std::to_string(options_.port));
     host_->duplicatePeers = std::max<size_t>(1, options_.peers_per_address);
+    // ENet checks a message's size against maximumPacketSize both ways, so it stays at the
+    // largest frame we send (a Welcome carries the whole config); what a client may send, at
+    // most a client frame, is checked by the gate (udp_peer_commands.hpp) before ENet reads it.
+    host_->maximumPacketSize = protocol::frame_prefix_size + protocol::max_server_frame_body;
+    host_->maximumWaitingData = options_.max_waiting_bytes;
+    half_open_.assign(host_->peerCount, {});
     host_->intercept = &udp_transport::intercept;
     port_ = host_->address.port;
     const int fd = ::dup(host_->socket);
@@ -98,8 +106,14 @@ void udp_transport::start() {
     readable_.assign(fd);
     std::printf("udp listening on %s:%u\n", bind.c_str(), port_);
     std::fflush(stdout);
-    log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
-             bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
+    if (options_.snapshot_copies == 0)
+        log_line(
+            "udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent 1 or 2 "
+            "times by each client's loss",
+            bind.c_str(), port_, peers, options_.snapshot_budget);
+    else
+        log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
+                 bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
     wait_readable();
     arm_timer();
 }
@@ -119,6 +133,7 @@ void udp_transport::arm_timer() {
         if (ec || stopped_) return;
         service();
         reap_closing();
+        reap_half_open();
         arm_timer();
     });
 }
@@ -173,6 +188,7 @@ bool udp_transport::admit(ENetHost* host) {
     const std::string address = address_text(host->receivedAddress);
     switch (gate_.judge(datagram, address, servicing_now_ns)) {
         case gate_verdict::pass:
+            if (auto why = peer_commands_refusal(host)) return refuse(*why, address);
             acknowledge_proven_handshake(host);
             return true;
         case gate_verdict::refuse_shape:
@@ -181,11 +197,35 @@ bool udp_transport::admit(ENetHost* host) {
             return refuse(udp_refusal::rate, address);
         case gate_verdict::refuse_key:
             return refuse(udp_refusal::connect_key, address);
+        case gate_verdict::refuse_before_hello:  // judge_peer's verdicts, never judge's
+        case gate_verdict::refuse_fragment:
         case gate_verdict::connect:
             break;
     }
     // ENet drops a connect it has no slot for without a word: say so here.
-    return has_free_peer_slot(host, host->receivedAddress) ? true : refuse(udp_refusal::peer_limit, address);
+    if (auto why = slot_refusal(host, host->receivedAddress)) return refuse(*why, address);
+    return true;
+}
+
+std::optional<udp_refusal> udp_transport::peer_commands_refusal(ENetHost* host) {
+    const std::span<const uint8_t> datagram(host->receivedData, host->receivedDataLength);
+    // Said Hello: the slot's peer, on this address, has a connection whose Hello reached the
+    // match. Any other datagram ENet drops (wrong address) or holds before Hello.
+    bool said_hello = false;
+    if (const auto header = read_datagram_header(datagram); header && header->peer_id < host->peerCount) {
+        const ENetPeer& peer = host->peers[header->peer_id];
+        const auto* c = static_cast<const udp_peer_connection*>(peer.data);
+        said_hello = c != nullptr && c->said_hello() && peer.address.host == host->receivedAddress.host &&
+                     peer.address.port == host->receivedAddress.port;
+    }
+    switch (gate_.judge_peer(datagram, said_hello)) {
+        case gate_verdict::refuse_before_hello:
+            return udp_refusal::before_hello;
+        case gate_verdict::refuse_fragment:
+            return udp_refusal::fragment;
+        default:
+            return std::nullopt;
+    }
 }
 
 void udp_transport::acknowledge_proven_handshake(ENetHost* host) {
@@ -218,20 +258,59 @@ bool udp_transport::refuse(udp_refusal why, const std::string& address) {
     return false;
 }
 
-bool udp_transport::has_free_peer_slot(const ENetHost* host, const ENetAddress& from) {
+std::optional<udp_refusal> udp_transport::slot_refusal(const ENetHost* host, const ENetAddress& from) const {
     // ENet's own rule for a connect (enet_protocol_handle_connect): a disconnected slot, and
-    // fewer than duplicatePeers slots already held by the same host.
+    // fewer than duplicatePeers slots already held by the same host. Ours on top: fewer than
+    // half_open_per_address of them half-open.
     bool free_slot = false;
-    size_t same_host = 0;
+    size_t same_host = 0, half_open = 0;
     for (size_t i = 0; i < host->peerCount; ++i) {
         const ENetPeer& peer = host->peers[i];
         if (peer.state == ENET_PEER_STATE_DISCONNECTED) {
             free_slot = true;
         } else if (peer.state != ENET_PEER_STATE_CONNECTING && peer.address.host == from.host) {
             ++same_host;
+            half_open += peer.state == ENET_PEER_STATE_ACKNOWLEDGING_CONNECT ? 1 : 0;
         }
     }
-    return free_slot && same_host < host->duplicatePeers;
+    if (half_open >= options_.half_open_per_address) return udp_refusal::half_open;
+    if (!free_slot || same_host >= host->duplicatePeers) return udp_refusal::peer_limit;
+    return std::nullopt;
+}
+
+void udp_transport::reap_half_open() {
+    // Checked every service interval (10 ms), long before ENet's first resend of
+    // VERIFY_CONNECT (after its 500 ms initial round trip).
+    const int64_t now = now_ns();
+    for (size_t i = 0; i < host_->peerCount && i < half_open_.size(); ++i) {
+        ENetPeer& peer = host_->peers[i];
+        half_open_peer& seen = half_open_[i];
+        if (peer.state != ENET_PEER_STATE_ACKNOWLEDGING_CONNECT) {
+            seen.since_ns = -1;
+            continue;
+        }
+        if (seen.since_ns < 0 || seen.connect_id != peer.connectID) seen = {peer.connectID, now};
+        if (now - seen.since_ns >= options_.half_open_timeout_ns) {
+            enet_peer_reset(&peer);  // never connected: no connection of ours to forget
+            seen.since_ns = -1;
+            continue;
+        }
+        // Sent once, never again: a connect that is not answered gets one VERIFY_CONNECT (48
+        // bytes) for its 52. A client whose acknowledgement was lost proves the handshake
+        // with its next datagram (udp_handshake.hpp); one that lost VERIFY_CONNECT resends its
+        // CONNECT, answered afresh once this peer is reset.
+        for (ENetList* list : {&peer.outgoingCommands, &peer.sentReliableCommands}) {
+            for (ENetListIterator it = enet_list_begin(list); it != enet_list_end(list); it = enet_list_next(it)) {
+                auto* command = reinterpret_cast<ENetOutgoingCommand*>(it);
+                if ((command->command.header.command & ENET_PROTOCOL_COMMAND_MASK) !=
+                    ENET_PROTOCOL_COMMAND_VERIFY_CONNECT)
+                    continue;
+                constexpr enet_uint32 never_ms = 3'600'000;  // longer than the peer lives
+                command->roundTripTimeout = never_ms;
+                command->roundTripTimeoutLimit = never_ms;
+            }
+        }
+    }
 }
 
 void udp_transport::on_connect(ENetPeer* peer) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,10 +33,21 @@ struct udp_options {
     size_t snapshot_budget = 1200;  // bytes: a snapshot larger than this is sent fragmented
     // Each snapshot datagram goes this many times, the copies a tick or more apart: a snapshot
     // is then missed only when every copy is lost (5 % loss: 0.25 % with 2), for that many
-    // times the downstream bytes. 1: no copy.
+    // times the downstream bytes. 1: no copy. 0 (auto): per client, twice while the loss
+    // measured from its acks is above about 1 %, else once (snapshot_loss.hpp).
     uint32_t snapshot_copies = 1;
     connect_gate_limits gate{};
     int64_t service_interval_ns = 10'000'000;  // ENet's resends and timeouts
+    // Handshakes not completed (CONNECT answered, VERIFY_CONNECT never acknowledged: what a
+    // spoofed source leaves) per source address; a connect beyond is refused (half_open).
+    uint32_t half_open_per_address = 2;
+    // A half-open peer is reset this long after it was first seen (ENet alone keeps it 30 s
+    // and sends VERIFY_CONNECT 6 times); its VERIFY_CONNECT is never sent again, so a connect
+    // that is not answered gets one 48-byte datagram back for its 52.
+    int64_t half_open_timeout_ns = 1'000'000'000;
+    // ENet's maximumWaitingData: bytes received from a peer and not yet handed to us (ENet's
+    // default is 32 MiB). Four largest client frames.
+    size_t max_waiting_bytes = 4 * (4 + 64 * 1024);
 };
 
 class udp_transport {
@@ -87,7 +99,14 @@ private:
     // A datagram from a peer whose handshake ENet has not seen acknowledged, though the
     // datagram proves it arrived: gets the acknowledgement in front (udp_handshake.hpp).
     void acknowledge_proven_handshake(ENetHost* host);
-    static bool has_free_peer_slot(const ENetHost* host, const ENetAddress& from);
+    // Whether a connect from `from` may take a peer slot: free slot, address's peers and its
+    // half-open handshakes under their limits; the refusal otherwise.
+    std::optional<udp_refusal> slot_refusal(const ENetHost* host, const ENetAddress& from) const;
+    // The refusal of a datagram to a peer by its commands (udp_peer_commands.hpp), if any.
+    std::optional<udp_refusal> peer_commands_refusal(ENetHost* host);
+    // Resets the peers whose handshake stayed half-open for half_open_timeout_ns, and keeps
+    // ENet from sending their VERIFY_CONNECT again.
+    void reap_half_open();
 
     boost::asio::io_context& io_;
     server& owner_;
@@ -100,6 +119,11 @@ private:
     udp_refusal_log refusals_;
     std::vector<uint8_t> proven_handshake_;  // the datagram ENet reads instead, with its acknowledgement
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>> connections_;  // by id, in connect order
+    struct half_open_peer {
+        enet_uint32 connect_id = 0;  // ENet's id of the handshake: a slot reused is a new one
+        int64_t since_ns = -1;       // first seen half-open; -1: the slot is not half-open
+    };
+    std::vector<half_open_peer> half_open_;  // by peer slot
     uint64_t next_id_ = 1;
     bool flush_posted_ = false;
     bool stopped_ = false;

@@ -30,7 +30,9 @@ void report(const process_counters& c, match::figure_sink& out) {
                      "UDP datagrams refused before ENet read them, by reason: shape (not a connect, or "
                      "too short to answer), rate (an address's connects over its rate), peer_limit (no "
                      "free peer slot), connect_key (a connect without the server's UDP connect key, with "
-                     "--token-secret)."},
+                     "--token-secret), half_open (a connect from an address holding 2 half-open handshakes), "
+                     "before_hello (a fragment or a held command from a peer before its Hello), fragment (a "
+                     "fragment claiming more fragments or bytes than its length allows)."},
                     "reason", c.udp_refused);
 }
 

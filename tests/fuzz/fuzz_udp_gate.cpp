@@ -7,7 +7,9 @@
 // gate must never read past them, admit a connect datagram short enough to be amplified by
 // ENet's answer, refuse a datagram addressed to a peer (ENet judges those), admit a non-connect
 // addressed to no peer, let an address connect faster than its rate, remember more addresses
-// than its limit, or, keyed, admit a connect whose data is not an accepted key.
+// than its limit, or, keyed, admit a connect whose data is not an accepted key; nor may the
+// commands of a datagram to a peer (udp_peer_commands.hpp) be read past its end, or pass before
+// the peer's Hello and be refused after it.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "server/net/udp_connect_gate.hpp"
+#include "server/net/udp_peer_commands.hpp"
 
 namespace {
 
@@ -71,9 +74,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         ++datagrams;
         passed += in ? 1 : 0;
         switch (kind) {
-            case net::datagram_kind::peer:
+            case net::datagram_kind::peer: {
                 check(in && in_small && in_keyed);
+                // What a peer may send before its Hello it may send after.
+                const bool before = gate.judge_peer(datagram, false) == net::gate_verdict::pass;
+                const bool after = gate.judge_peer(datagram, true) == net::gate_verdict::pass;
+                if (before) check(after);
                 break;
+            }
             case net::datagram_kind::too_short:
             case net::datagram_kind::not_a_peer:
                 check(!in && !in_small && !in_keyed);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "server_process.hpp"
 
@@ -96,9 +97,16 @@ void send_raw_datagram(uint16_t port, std::span<const uint8_t> bytes) {
     ::close(fd);
 }
 
-raw_udp_socket::raw_udp_socket(uint16_t port) {
+raw_udp_socket::raw_udp_socket(uint16_t port, const char* source) {
     fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
     if (fd_ < 0) throw std::runtime_error("socket failed");
+    sockaddr_in from{};
+    from.sin_family = AF_INET;
+    if (::inet_pton(AF_INET, source, &from.sin_addr) != 1 ||
+        ::bind(fd_, reinterpret_cast<const sockaddr*>(&from), sizeof from) != 0) {
+        ::close(fd_);
+        throw std::runtime_error(std::string("cannot bind a UDP socket to ") + source);
+    }
     sockaddr_in to{};
     to.sin_family = AF_INET;
     to.sin_port = htons(port);

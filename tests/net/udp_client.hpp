@@ -48,7 +48,9 @@ private:
 // written by hand: a handshake with a step left out, say.
 class raw_udp_socket {
 public:
-    explicit raw_udp_socket(uint16_t port);
+    // `source`: the loopback address to send from (any of 127.0.0.0/8 on Linux), for a test
+    // that needs several source hosts.
+    explicit raw_udp_socket(uint16_t port, const char* source = "127.0.0.1");
     ~raw_udp_socket();
     raw_udp_socket(const raw_udp_socket&) = delete;
     raw_udp_socket& operator=(const raw_udp_socket&) = delete;

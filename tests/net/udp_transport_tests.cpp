@@ -14,6 +14,7 @@
 #include "server/auth/join_token.hpp"
 #include "server_process.hpp"
 #include "udp_client.hpp"
+#include "udp_raw_enet.hpp"
 
 using namespace arena;
 using namespace arena::test;
@@ -81,20 +82,6 @@ play_figures play(udp_client& c, std::chrono::milliseconds duration, uint32_t fi
         }
     }
     return f;
-}
-
-// An ENet 1.3 CONNECT (enet/protocol.h) written by hand, so that a later step of the handshake
-// can be left out: to no peer yet, with a sent time; then CONNECT | ACKNOWLEDGE on the control
-// channel, sequence 1, and its fields in network order.
-std::vector<uint8_t> enet_connect_datagram(uint32_t connect_id) {
-    std::vector<uint8_t> d = {0x8F, 0xFF, 0x00, 0x00, 0x82, 0xFF, 0x00, 0x01};
-    auto u32 = [&d](uint32_t v) {
-        for (int shift = 24; shift >= 0; shift -= 8) d.push_back(static_cast<uint8_t>(v >> shift));
-    };
-    d.insert(d.end(), {0x00, 0x00, 0xFF, 0xFF});  // our peer id 0; the server picks the sessions
-    for (uint32_t field : {1400u, 32768u, 2u, 0u, 0u, 5000u, 2u, 2u, connect_id, 0u}) u32(field);
-    // mtu, window, channels, bandwidth in and out, throttle interval, acceleration, deceleration
-    return d;
 }
 
 }  // namespace
@@ -191,10 +178,14 @@ std::map<uint32_t, int> snapshot_ticks(udp_client& c, std::chrono::milliseconds 
     return seen;
 }
 
-TEST_CASE("each UDP snapshot goes twice with --udp-snapshot-copies 2, once by default", "[net][udp]") {
-    const int copies = GENERATE(1, 2);
-    udp_server server(copies == 2 ? std::vector<std::string>{"--udp-snapshot-copies", "2"}
-                                  : std::vector<std::string>{});
+TEST_CASE("each UDP snapshot goes twice with --udp-snapshot-copies 2, once by default and with auto on loopback",
+          "[net][udp]") {
+    // 0: auto; this client acknowledges no snapshot (and loopback loses none): once.
+    const int setting = GENERATE(1, 2, 0);
+    const int copies = setting == 2 ? 2 : 1;
+    udp_server server(setting == 2   ? std::vector<std::string>{"--udp-snapshot-copies", "2"}
+                      : setting == 0 ? std::vector<std::string>{"--udp-snapshot-copies", "auto"}
+                                     : std::vector<std::string>{});
     udp_client c(server.udp_port);
     join(c);
     const std::map<uint32_t, int> seen = snapshot_ticks(c, 1000ms);

@@ -1,0 +1,94 @@
+// One UDP client's snapshot loss from its acks and the copies it calls for
+// (server/net/snapshot_loss.*), over a simulated link: no socket, no clock.
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <random>
+
+#include "server/net/snapshot_loss.hpp"
+
+using namespace arena::net;
+
+namespace {
+
+// Snapshots every 3 ticks, each sent as many times as the estimator says, each copy lost with
+// probability `loss`; the client acknowledges a snapshot when a copy arrives.
+struct lossy_link {
+    snapshot_loss estimator;
+    std::mt19937 rng{42};
+    uint32_t tick = 0;
+    uint64_t datagrams = 0;
+    uint64_t snapshots = 0;
+    uint64_t sent_twice = 0;
+
+    void run(int count, double loss) {
+        std::uniform_real_distribution<double> coin(0.0, 1.0);
+        for (int i = 0; i < count; ++i) {
+            tick += 3;
+            const uint32_t copies = estimator.copies();
+            estimator.sent(tick);
+            bool arrived = false;
+            for (uint32_t c = 0; c < copies; ++c) arrived = coin(rng) >= loss || arrived;
+            datagrams += copies;
+            ++snapshots;
+            sent_twice += copies == 2 ? 1 : 0;
+            if (arrived) estimator.acked(tick);
+        }
+    }
+};
+
+}  // namespace
+
+TEST_CASE("without loss a UDP client gets each snapshot once", "[net][udp]") {
+    lossy_link l;
+    l.run(2000, 0.0);
+    CHECK(l.estimator.copies() == 1);
+    CHECK(l.estimator.datagram_loss() == 0.0);
+    CHECK(l.sent_twice == 0);
+    CHECK(l.estimator.samples() >= 1990);
+}
+
+TEST_CASE("at 5 % loss a UDP client's estimate finds it and a second copy goes, and stays", "[net][udp]") {
+    lossy_link l;
+    l.run(400, 0.05);
+    CHECK(l.estimator.copies() == 2);
+    CHECK(l.estimator.datagram_loss() > 0.01);
+    const uint64_t twice_before = l.sent_twice;
+    l.run(4000, 0.05);
+    // Every 600 snapshots the loss is measured again with one copy, until the first loss.
+    CHECK(l.sent_twice - twice_before >= 3600);
+}
+
+TEST_CASE("when a UDP client's loss ends the second copy stops", "[net][udp]") {
+    lossy_link l;
+    l.run(1000, 0.05);
+    REQUIRE(l.estimator.copies() == 2);
+    l.run(1000, 0.0);
+    CHECK(l.estimator.copies() == 1);
+    const uint64_t twice = l.sent_twice;
+    l.run(1000, 0.0);
+    CHECK(l.sent_twice == twice);
+}
+
+TEST_CASE("below about 1 % loss a UDP snapshot mostly goes once", "[net][udp]") {
+    lossy_link l;
+    l.run(20000, 0.002);  // 1000 s at 20 Hz
+    INFO(l.sent_twice << " of " << l.snapshots << " sent twice");
+    CHECK(l.sent_twice * 10 < l.snapshots);  // at most a tenth of them twice
+}
+
+TEST_CASE("a UDP client's skipped ack counts the snapshots between as lost, and repeated or late acks count nothing",
+          "[net][udp]") {
+    snapshot_loss estimator({.copy_above = 0.9, .smoothing = 0.5});
+    for (uint32_t t = 3; t <= 12; t += 3) estimator.sent(t);
+    estimator.acked(3);  // the first ack only starts the count
+    CHECK(estimator.samples() == 0);
+    estimator.acked(3);
+    estimator.acked(6);
+    CHECK(estimator.samples() == 1);
+    CHECK(estimator.datagram_loss() == 0.0);
+    estimator.acked(12);  // 9 never acknowledged: lost; 12 arrived
+    CHECK(estimator.samples() == 3);
+    CHECK(estimator.datagram_loss() == Approx(0.25));  // 0, then lost (0.5), then arrived (0.25)
+    estimator.acked(9);                                // late: an input overtaken by a newer one
+    CHECK(estimator.samples() == 3);
+}
