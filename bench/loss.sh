@@ -8,9 +8,10 @@
 # share of the packets leaving it (nftables: `numgen random mod 1000 < N drop`); every packet
 # leaves one of them once. One table.
 # Env: LOSS_PERCENT ("0 1 2 5 10"), LOSS_LATENCY_MS ("0 50 100"), LOSS_SECONDS (8),
-#      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp udp2"; udp2 is UDP with each snapshot sent
-#      twice, a tick apart: --udp-snapshot-copies 2; udpauto: --udp-snapshot-copies auto, a
-#      second copy per client while its loss is above 1 %), LOSS_WORK (a folder that keeps each run's
+#      LOSS_BOTS (16), LOSS_TRANSPORTS ("tcp udp1 udp udp2"; udp is UDP as the server runs it
+#      by default, --udp-snapshot-copies auto: a second copy of each snapshot, a tick later, per
+#      client while its loss is above 1 %; udp1 is one copy, --udp-snapshot-copies 1; udp2 two;
+#      udpauto names auto explicitly), LOSS_WORK (a folder that keeps each run's
 #      bots' --json LABEL.json and server's --stats-json LABEL.stats.json, LABEL being
 #      TRANSPORT-LOSS-LATENCY; default: a temporary one, removed), LOSS_NICE (-10: the nice
 #      value of the link, the server and the bots).
@@ -21,7 +22,7 @@ losses=${LOSS_PERCENT:-0 1 2 5 10}
 latencies=${LOSS_LATENCY_MS:-0 50 100}
 seconds=${LOSS_SECONDS:-8}
 bots=${LOSS_BOTS:-16}
-transports=${LOSS_TRANSPORTS:-tcp udp udp2}
+transports=${LOSS_TRANSPORTS:-tcp udp1 udp udp2}
 [ "$(id -u)" = 0 ] || { echo "bench-loss: needs root (ip netns, nft)" >&2; exit 1; }
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
 keep=${LOSS_WORK:-}
@@ -72,6 +73,7 @@ connect() {
 run() {
   local transport=$1 permille=$2 latency=$3 label=$4 ns
   local -a copies=()
+  if [ "$transport" = udp1 ]; then transport=udp; copies=(--udp-snapshot-copies 1); fi
   if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
   if [ "$transport" = udpauto ]; then transport=udp; copies=(--udp-snapshot-copies auto); fi
   connect "$permille" "$latency" "$label"

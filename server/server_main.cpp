@@ -46,12 +46,12 @@ int main(int argc, char** argv) {
     app.add_option("--allowed-origin", web.allowed_origins,
                    "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
                    "repeatable (default: any)");
-    std::string udp_snapshot_copies = "1";
+    std::string udp_snapshot_copies = "auto";
     app.add_option("--udp-snapshot-copies", udp_snapshot_copies,
                    "send each UDP snapshot this many times (1 to 3), a tick apart: a lost one is replaced by its "
                    "copy, for that many times the downstream bytes; or 'auto': per client, twice while the "
                    "loss measured from its snapshot acks is above about 1 % (for 30 s at a time, then measured "
-                   "again), else once (default 1: no copy)")
+                   "again), else once (default auto: a clean link costs no extra byte)")
         ->check(CLI::IsMember({"1", "2", "3", "auto"}));
     app.add_option("--tick-rate", options.match.tick_rate, "world steps per second (default 60)")
         ->check(CLI::Range(1, 1000));
