@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "server/auth/join_token.hpp"
+#include "server/host/intake.hpp"
 #include "server/match/match.hpp"
 #include "server/net/duration_histogram.hpp"
 #include "server/net/tick_clock.hpp"
@@ -66,7 +67,6 @@ public:
     // From sessions. The session's socket is closed: it is forgotten.
     void on_gone(session& s);
     void count_in(size_t bytes);
-    void count_message_in() { ++process_.messages_in; }
     // From a datagram transport (UDP): a client connection opened or closed there, counted
     // with the TCP sessions in connections_open and the peak; a snapshot sent as fragments.
     void count_peer_opened();
@@ -97,6 +97,7 @@ public:
     bool shutting_down() const { return stopping_; }
 
     match::match& match() { return match_; }
+    host::intake& intake() { return intake_; }
     uint16_t port() const { return port_; }
     void write_stats_json(const std::string& path) const;
 
@@ -114,6 +115,9 @@ private:
     boost::asio::io_context& io_;
     server_options options_;
     match::match match_;
+    ops::process_counters process_;  // whole run (connections_open and tick_overruns filled when read)
+    host::match_registry matches_{match_};
+    host::intake intake_{matches_, process_};
     boost::asio::ip::tcp::acceptor acceptor_;
     ops::accept_backoff accept_backoff_;  // out of descriptors: pause accepting, log at a bounded rate
     uint16_t port_ = 0;
@@ -138,7 +142,6 @@ private:
     int64_t started_ns_ = 0;
     duration_histogram run_ticks_;
     duration_histogram window_ticks_;
-    ops::process_counters process_;  // whole run (connections_open and tick_overruns filled when read)
     traffic window_traffic_;
     int64_t window_start_ns_ = 0;
     int64_t last_watchdog_ns_ = 0;

@@ -7,7 +7,6 @@
 #include <climits>
 #include <system_error>
 
-#include "protocol/verify.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 
@@ -79,20 +78,15 @@ void session::read_available(std::span<uint8_t> buffer) {
 }
 
 bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
+    host::intake& intake = owner_.intake();
     while (!closing_) {
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
-            match_.reject(*this, match::admission::unreadable(reader_));
+            intake.refuse_unreadable(*this, reader_);
             return false;
         }
         if (!reader_.has_frame()) return true;  // the rest of the frame is still on its way
-        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-        if (!verified) {
-            match_.reject(*this, match::admission::unverified(verified.error));
-            return false;
-        }
-        owner_.count_message_in();
-        const bool go_on = match_.receive(*this, *verified.value, arrival_ns);
+        const bool go_on = intake.take(*this, reader_.frame(), arrival_ns).go_on;
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing

@@ -57,16 +57,16 @@ match::match& udp_transport::match() {
     return owner_.match();
 }
 
+host::intake& udp_transport::intake() {
+    return owner_.intake();
+}
+
 int64_t udp_transport::now_ns() const {
     return owner_.now_ns();
 }
 
 void udp_transport::count_out(size_t bytes) {
     owner_.count_out(bytes);
-}
-
-void udp_transport::count_message_in() {
-    owner_.count_message_in();
 }
 
 int64_t udp_transport::tick_ns() const {

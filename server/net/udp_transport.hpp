@@ -21,6 +21,10 @@
 #include "server/net/udp_peer_connection.hpp"
 #include "server/net/udp_refusal_log.hpp"
 
+namespace arena::host {
+class intake;
+}
+
 namespace arena::net {
 
 class server;
@@ -52,9 +56,9 @@ public:
 
     // For the peer connections.
     match::match& match();
+    host::intake& intake();
     int64_t now_ns() const;
     void count_out(size_t bytes);
-    void count_message_in();
     void count_fragmented_snapshot();
     void count_snapshot_copy();
     size_t snapshot_budget() const { return options_.snapshot_budget; }

@@ -89,6 +89,14 @@ web_transport::~web_transport() {
     for (auto& c : waiting_) c->stream.socket().close(ec);
 }
 
+host::intake& web_transport::intake() {
+    return owner_.intake();
+}
+
+int64_t web_transport::now_ns() const {
+    return owner_.now_ns();
+}
+
 void web_transport::start() {
     const tcp::endpoint endpoint(boost::asio::ip::make_address(owner_.options().bind), options_.port);
     acceptor_.open(endpoint.protocol());

@@ -22,6 +22,10 @@
 #include "server/ops/accept_backoff.hpp"
 #include "server/ops/http_routes.hpp"
 
+namespace arena::host {
+class intake;
+}
+
 namespace arena::net {
 
 class server;
@@ -54,6 +58,8 @@ public:
 
     // For the WebSocket sessions.
     server& owner() { return owner_; }
+    host::intake& intake();
+    int64_t now_ns() const;
     const web_options& options() const { return options_; }
     void on_open(const std::shared_ptr<ws_session>& s);
     void on_gone(ws_session& s);

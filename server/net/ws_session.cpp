@@ -3,7 +3,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 
-#include "protocol/verify.hpp"
+#include "server/host/intake.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 #include "server/net/web_transport.hpp"
@@ -99,8 +99,8 @@ boost::asio::awaitable<void> ws_session::reader() {
         if (ec == websocket::error::message_too_big) {
             // Beast refused the frame by its header, before buffering it, and answered with the
             // close code 1009; the Reject below may not get through, the log line does.
-            match_.reject(*this, {RejectCode::too_large,
-                                  "a WebSocket message over " + std::to_string(max_message_bytes) + " bytes"});
+            owner_.intake().refuse(*this, {RejectCode::too_large,
+                                           "a WebSocket message over " + std::to_string(max_message_bytes) + " bytes"});
             co_return;
         }
         if (ec) {
@@ -114,7 +114,7 @@ boost::asio::awaitable<void> ws_session::reader() {
             co_return;
         }
         if (!ws_.got_binary()) {
-            match_.reject(*this, {RejectCode::bad_request, "a text message: the protocol is binary frames"});
+            owner_.intake().refuse(*this, {RejectCode::bad_request, "a text message: the protocol is binary frames"});
             co_return;
         }
         owner_.owner().count_in(n);
@@ -123,25 +123,20 @@ boost::asio::awaitable<void> ws_session::reader() {
 }
 
 bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
+    host::intake& intake = owner_.intake();
     while (!data.empty() && !closing_) {
         if (frame_in_message_) {
-            match_.reject(*this, {RejectCode::bad_request, "a WebSocket message holds more than one frame"});
+            intake.refuse(*this, {RejectCode::bad_request, "a WebSocket message holds more than one frame"});
             return false;
         }
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
-            match_.reject(*this, match::admission::unreadable(reader_));
+            intake.refuse_unreadable(*this, reader_);
             return false;
         }
         if (!reader_.has_frame()) break;  // the rest of the frame is in the message's next bytes
         frame_in_message_ = true;
-        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-        if (!verified) {
-            match_.reject(*this, match::admission::unverified(verified.error));
-            return false;
-        }
-        owner_.owner().count_message_in();
-        const bool go_on = match_.receive(*this, *verified.value, owner_.owner().now_ns());
+        const bool go_on = intake.take(*this, reader_.frame(), owner_.now_ns()).go_on;
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing
@@ -151,7 +146,7 @@ bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
     if (closing_) return false;
     if (message_done) {
         if (!frame_in_message_) {
-            match_.reject(*this, {RejectCode::bad_request, reader_.buffered() == 0
+            intake.refuse(*this, {RejectCode::bad_request, reader_.buffered() == 0
                                                                ? std::string("an empty WebSocket message")
                                                                : "a WebSocket message ends inside a frame, after " +
                                                                      std::to_string(reader_.buffered()) + " bytes"});
