@@ -13,6 +13,43 @@
 
 namespace arena::cli {
 
+namespace {
+
+// The world the match plays in: --config's file, else --preset's; --rules over either's rules.
+// False: refused, said on stderr.
+bool choose_world(const std::string& preset, const std::string& config_file, const std::string& rules_name,
+                  server_setup& out) {
+    world::world_config& world_config = out.world;
+    host::host_options& options = out.host;
+    if (!config_file.empty()) {
+        auto loaded = config::load_config_file(config_file);
+        if (auto* e = std::get_if<config::config_error>(&loaded)) {
+            std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
+            return false;
+        }
+        world_config = std::get<world::world_config>(loaded);
+        options.match.preset = "";
+    } else if (auto p = world::preset_by_name(preset)) {
+        world_config = *p;
+        options.match.preset = preset;
+    } else {
+        std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
+        return false;
+    }
+    if (!rules_name.empty()) {
+        const auto rules = config::rules_by_name(rules_name);
+        if (!rules) {
+            std::fprintf(stderr, "arena-server: --rules: unknown rules '%s' (%s)\n", rules_name.c_str(),
+                         config::rules_names_list().c_str());
+            return false;
+        }
+        world_config.rules = *rules;
+    }
+    return true;
+}
+
+}  // namespace
+
 int parse_server_flags(int argc, char** argv, server_setup& out) {
     CLI::App app{"arena-server: the authoritative Arena game server", "arena-server"};
     host::host_options& options = out.host;
@@ -143,31 +180,7 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
     options.idle_timeout_ns = static_cast<int64_t>(idle_s * 1e9);
 
-    world::world_config& world_config = out.world;
-    if (!config_file.empty()) {
-        auto loaded = config::load_config_file(config_file);
-        if (auto* e = std::get_if<config::config_error>(&loaded)) {
-            std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
-            return 2;
-        }
-        world_config = std::get<world::world_config>(loaded);
-        options.match.preset = "";
-    } else if (auto p = world::preset_by_name(preset)) {
-        world_config = *p;
-        options.match.preset = preset;
-    } else {
-        std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
-        return 2;
-    }
-    if (!rules_name.empty()) {
-        const auto rules = config::rules_by_name(rules_name);
-        if (!rules) {
-            std::fprintf(stderr, "arena-server: --rules: unknown rules '%s' (%s)\n", rules_name.c_str(),
-                         config::rules_names_list().c_str());
-            return 2;
-        }
-        world_config.rules = *rules;
-    }
+    if (!choose_world(preset, config_file, rules_name, out)) return 2;
 
     if (udp_port >= 0)
         out.udp = net::udp_options{.port = static_cast<uint16_t>(udp_port), .snapshot_copies = udp_snapshot_copies};
