@@ -7,9 +7,8 @@
 #include <climits>
 #include <system_error>
 
-#include "protocol/verify.hpp"
-#include "server/net/log.hpp"
-#include "server/net/server.hpp"
+#include "server/host/log.hpp"
+#include "server/net/tcp_transport.hpp"
 
 namespace arena::net {
 
@@ -26,15 +25,18 @@ std::string describe(const boost::asio::ip::tcp::socket& socket) {
 
 }  // namespace
 
-session::session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id)
+session::session(boost::asio::ip::tcp::socket socket, tcp_transport& owner, uint64_t id)
     : executor_(socket.get_executor()),
       accepted_(std::move(socket)),
       owner_(owner),
-      match_(match),
       id_(id),
       peer_(describe(accepted_)),
-      output_(owner.options().max_control_frames),
+      output_(owner.host().options().max_control_frames),
       linger_(executor_) {}
+
+match::match& session::game() {
+    return owner_.host().matches().match_of(*this);
+}
 
 session::~session() {
     if (room_) (void)room_->release();  // fd_ is closed below, once
@@ -44,7 +46,7 @@ session::~session() {
 void session::start() {
     boost::system::error_code ec;
     accepted_.set_option(boost::asio::ip::tcp::no_delay(true), ec);
-    accepted_.set_option(boost::asio::socket_base::send_buffer_size(owner_.options().socket_send_buffer), ec);
+    accepted_.set_option(boost::asio::socket_base::send_buffer_size(owner_.host().options().socket_send_buffer), ec);
     // Out of the epoll set (one epoll_ctl): with it, every input that arrives would wake the
     // server, which reads only at ticks anyway. Every call below passes MSG_DONTWAIT.
     fd_ = accepted_.release(ec);
@@ -66,33 +68,28 @@ void session::read_available(std::span<uint8_t> buffer) {
             const bool eof = n == 0;
             const kind what =
                 !eof ? kind::socket_error : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
-            match_.disconnect(*this, {what, {}, eof ? std::string() : std::system_category().message(errno)});
+            game().disconnect(*this, {what, {}, eof ? std::string() : std::system_category().message(errno)});
             close_now();
             return;
         }
         const auto got = static_cast<size_t>(n);
-        owner_.count_in(got);
+        owner_.host().intake().count_bytes(got);
         // Rates are measured in real time: after a stall of the server, what queued is read at once.
-        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.now_ns())) return;
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.host().now_ns())) return;
         if (got < buffer.size()) return;  // the socket is drained: the next recv would find nothing
     }
 }
 
 bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
+    host::intake& intake = owner_.host().intake();
     while (!closing_) {
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
-            match_.reject(*this, match::admission::unreadable(reader_));
+            intake.refuse_unreadable(*this, reader_);
             return false;
         }
         if (!reader_.has_frame()) return true;  // the rest of the frame is still on its way
-        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-        if (!verified) {
-            match_.reject(*this, match::admission::unverified(verified.error));
-            return false;
-        }
-        owner_.count_message_in();
-        const bool go_on = match_.receive(*this, *verified.value, arrival_ns);
+        const bool go_on = intake.take(*this, reader_.frame(), arrival_ns).go_on;
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing
@@ -142,7 +139,7 @@ void session::write_pending() {
         }
         if (n < 0) {
             if (!closing_)
-                match_.disconnect(*this,
+                game().disconnect(*this,
                                   {match::close_cause::kind::write_failed, {}, std::system_category().message(errno)});
             close_now();
             return;
@@ -157,8 +154,8 @@ void session::write_pending() {
             rest.iov_len -= left;
             continue;
         }
-        owner_.count_out(writing_bytes_, writing_frames_);
-        output_.written(owner_.now_ns());
+        owner_.host().count_out(writing_bytes_, writing_frames_);
+        output_.written(owner_.host().now_ns());
     }
 }
 
@@ -172,7 +169,7 @@ void session::wait_for_room() {
         (void)room_->release();
         room_.reset();
         waiting_for_room_ = false;
-        if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
+        if (!closing_) game().disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
         close_now();
         return;
     }
@@ -189,10 +186,10 @@ void session::wait_for_room() {
 
 void session::send(protocol::frame_bytes frame) {
     if (closing_) return;
-    if (!output_.push_control(std::move(frame), owner_.now_ns())) {
+    if (!output_.push_control(std::move(frame), owner_.host().now_ns())) {
         // Not from inside the match's call that sent this: the refusal goes through the match.
         boost::asio::post(executor_, [self = shared_from_this()] {
-            self->match_.reject(*self, {RejectCode::slow_consumer, "too many messages waiting to be sent"});
+            self->game().reject(*self, {RejectCode::slow_consumer, "too many messages waiting to be sent"});
         });
         return;
     }
@@ -201,13 +198,13 @@ void session::send(protocol::frame_bytes frame) {
 
 void session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
-    output_.put_snapshot(snapshot, ack_sequence, owner_.now_ns());
+    output_.put_snapshot(snapshot, ack_sequence, owner_.host().now_ns());
     request_flush();
 }
 
 void session::send_snapshot_frame(std::span<const uint8_t> frame) {
     if (closing_) return;
-    output_.put_snapshot_frame(frame, owner_.now_ns());
+    output_.put_snapshot_frame(frame, owner_.host().now_ns());
     request_flush();
 }
 
@@ -230,7 +227,7 @@ void session::close_after(protocol::frame_bytes last_frame) {
     output_.keep_only(std::move(last_frame));
     request_flush();
     auto self = shared_from_this();
-    linger_.expires_after(std::chrono::nanoseconds(owner_.options().close_grace_ns));
+    linger_.expires_after(std::chrono::nanoseconds(owner_.host().options().close_grace_ns));
     linger_.async_wait([self](const boost::system::error_code& e) {
         if (!e) self->close_now();
     });
@@ -252,7 +249,7 @@ void session::drain_until_closed() {
     for (int reads = 0; reads < 8; ++reads) {
         const ssize_t n = ::recv(fd_, scrap, sizeof scrap, MSG_DONTWAIT);
         if (n > 0) {
-            owner_.count_in(static_cast<size_t>(n));
+            owner_.host().intake().count_bytes(static_cast<size_t>(n));
             continue;
         }
         if (n < 0 && errno == EINTR) continue;

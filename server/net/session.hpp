@@ -1,6 +1,6 @@
 #pragma once
-// One TCP client: read once per tick (read_available: frames, verifies, hands each message to
-// the match), and written from the server's flush after the handler that queued output (a tick,
+// One TCP client: read once per tick (read_available: frames, and hands each frame to the
+// intake, server/host/intake.hpp), and written from the transport's flush after the handler that queued output (a tick,
 // a read, a close), with one gathered write of everything waiting. Output is bounded
 // (bounded_output.hpp): control messages queue up to a limit, and a snapshot waiting to be sent
 // is replaced by a newer one, so a client that does not read costs at most one snapshot and a
@@ -26,18 +26,18 @@
 
 namespace arena::net {
 
-class server;
+class tcp_transport;
 
 class session : public match::connection, public std::enable_shared_from_this<session> {
 public:
-    session(boost::asio::ip::tcp::socket socket, server& owner, match::match& match, uint64_t id);
+    session(boost::asio::ip::tcp::socket socket, tcp_transport& owner, uint64_t id);
     ~session() override;
     session(const session&) = delete;
     session& operator=(const session&) = delete;
 
     void start();
     // Reads what the socket holds now into `buffer` (shared: one thread) and hands every
-    // complete frame to the match; never waits. The server calls it once per tick.
+    // complete frame to the intake; never waits. The transport calls it once per tick.
     void read_available(std::span<uint8_t> buffer);
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
@@ -53,11 +53,13 @@ public:
     uint64_t id() const { return id_; }
     bool closing() const { return closing_; }
     // Writes what waits, as far as the socket takes it now; the server calls it after the
-    // handler that queued output (see request_flush).
+    // handler that queued output (see request_flush), or after a tick.
     void flush();
 
 private:
-    // Frames `data` and hands each verified message to the match; false: stop reading.
+    // The match this session belongs to (the host's registry says which).
+    match::match& game();
+    // Frames `data` and hands each frame to the intake; false: stop reading.
     bool take_frames(std::span<const uint8_t> data, int64_t arrival_ns);
     // Asks the server for a flush of this session, unless one is asked for or a write waits.
     void request_flush();
@@ -75,8 +77,7 @@ private:
     boost::asio::any_io_executor executor_;
     boost::asio::ip::tcp::socket accepted_;  // until start(): then its descriptor is fd_
     int fd_ = -1;
-    server& owner_;
-    match::match& match_;
+    tcp_transport& owner_;
     uint64_t id_;
     std::string peer_;
     protocol::frame_reader reader_;

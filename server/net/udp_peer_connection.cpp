@@ -2,7 +2,7 @@
 
 #include <arpa/inet.h>
 
-#include "protocol/verify.hpp"
+#include "server/host/intake.hpp"
 #include "server/net/udp_transport.hpp"
 
 namespace arena::net {
@@ -24,28 +24,27 @@ udp_peer_connection::udp_peer_connection(udp_transport& owner, ENetPeer* peer, u
 
 bool udp_peer_connection::receive(std::span<const uint8_t> datagram, int64_t arrival_ns) {
     if (closing_) return false;
+    host::intake& intake = owner_.intake();
     // One datagram, one frame: the same framing as TCP, so a frame that is too large is
     // refused by its prefix, and the frame lands 8-byte aligned for the verifier.
     const size_t used = reader_.feed(datagram);
     if (reader_.failed()) {
-        owner_.match().reject(*this, match::admission::unreadable(reader_));
+        intake.refuse_unreadable(*this, reader_);
         return false;
     }
     if (!reader_.has_frame() || used != datagram.size()) {
-        owner_.match().reject(*this,
-                              {protocol::RejectCode::bad_request,
-                               "a datagram of " + std::to_string(datagram.size()) + " bytes is not exactly one frame"});
+        intake.refuse(*this, {protocol::RejectCode::bad_request,
+                              "a datagram of " + std::to_string(datagram.size()) + " bytes is not exactly one frame"});
         return false;
     }
-    auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-    if (!verified) {
-        owner_.match().reject(*this, match::admission::unverified(verified.error));
-        return false;
+    const host::intake_result taken = intake.take(*this, reader_.frame(), arrival_ns);
+    if (const protocol::Message* message = taken.message) {
+        // What the gate and the snapshot copies need to know of the peer: whether it said
+        // Hello (from then on it may send fragments), and which snapshot it acknowledged.
+        if (message->payload_type() == protocol::Payload::Hello) said_hello_ = true;
+        if (const protocol::Input* input = message->payload_as_Input()) loss_.acked(input->snapshot_ack());
     }
-    owner_.count_message_in();
-    if (verified.value->payload_type() == protocol::Payload::Hello) said_hello_ = true;
-    if (const protocol::Input* input = verified.value->payload_as_Input()) loss_.acked(input->snapshot_ack());
-    const bool go_on = owner_.match().receive(*this, *verified.value, arrival_ns);
+    const bool go_on = taken.go_on;
     reader_.next();
     if (!go_on) close_after({});  // a Bye from the client; after a refusal this changes nothing
     return go_on;

@@ -8,8 +8,7 @@
 
 #include "protocol/version.hpp"
 #include "server/auth/join_token.hpp"
-#include "server/net/log.hpp"
-#include "server/net/server.hpp"
+#include "server/host/log.hpp"
 #include "server/net/udp_handshake.hpp"
 #include "server/net/udp_peer_commands.hpp"
 
@@ -33,10 +32,10 @@ constexpr int max_events_per_service = 4096;
 
 }  // namespace
 
-udp_transport::udp_transport(boost::asio::io_context& io, server& owner, udp_options options)
-    : io_(io), owner_(owner), options_(options), readable_(io), timer_(io), gate_(options.gate) {
+udp_transport::udp_transport(host::transport_host& host, udp_options options)
+    : io_(host.io()), owner_(host), options_(options), readable_(host.io()), timer_(host.io()), gate_(options.gate) {
     if (enet_initialize() != 0) throw std::runtime_error("udp: cannot initialise ENet");
-    if (const auto& secret = owner.options().token_secret) {
+    if (const auto& secret = host.options().token_secret) {
         gate_.require_connect_key([secret = *secret](int64_t unix_seconds) { return secret.connect_key(unix_seconds); },
                                   auth::connect_key_window_s);
     }
@@ -55,8 +54,12 @@ udp_transport::~udp_transport() {
     enet_deinitialize();
 }
 
-match::match& udp_transport::match() {
-    return owner_.match();
+match::match& udp_transport::match_of(const match::connection& c) {
+    return owner_.matches().match_of(c);
+}
+
+host::intake& udp_transport::intake() {
+    return owner_.intake();
 }
 
 int64_t udp_transport::now_ns() const {
@@ -67,12 +70,8 @@ void udp_transport::count_out(size_t bytes) {
     owner_.count_out(bytes);
 }
 
-void udp_transport::count_message_in() {
-    owner_.count_message_in();
-}
-
 int64_t udp_transport::tick_ns() const {
-    return 1'000'000'000 / std::max<int64_t>(1, owner_.options().match.tick_rate);
+    return owner_.tick_ns();
 }
 
 void udp_transport::send_due_copies() {
@@ -87,7 +86,8 @@ void udp_transport::start() {
     if (enet_address_set_host_ip(&address, bind.c_str()) != 0)
         throw std::runtime_error("--udp-port: ENet binds IPv4 only; cannot bind '" + bind + "'");
     address.port = options_.port;
-    const uint32_t limit = options_.max_peers != 0 ? options_.max_peers : owner_.match().rules().connection_limit();
+    const uint32_t limit =
+        options_.max_peers != 0 ? options_.max_peers : owner_.matches().default_match().rules().connection_limit();
     const size_t peers = std::clamp<size_t>(limit, 1, ENET_PROTOCOL_MAXIMUM_PEER_ID);
     host_ = enet_host_create(&address, peers, udp_channel_count, 0, 0);
     if (host_ == nullptr)
@@ -107,13 +107,13 @@ void udp_transport::start() {
     std::printf("udp listening on %s:%u\n", bind.c_str(), port_);
     std::fflush(stdout);
     if (options_.snapshot_copies == 0)
-        log_line(
+        host::log_line(
             "udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent 1 or 2 "
             "times by each client's loss",
             bind.c_str(), port_, peers, options_.snapshot_budget);
     else
-        log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
-                 bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
+        host::log_line("udp: ENet on %s:%u, %zu peer slots, snapshots up to %zu bytes per datagram, each sent %u times",
+                       bind.c_str(), port_, peers, options_.snapshot_budget, options_.snapshot_copies);
     wait_readable();
     arm_timer();
 }
@@ -253,8 +253,8 @@ void udp_transport::acknowledge_proven_handshake(ENetHost* host) {
 }
 
 bool udp_transport::refuse(udp_refusal why, const std::string& address) {
-    owner_.count_udp_refusal(why);
-    if (auto line = refusals_.refused(why, address, servicing_now_ns)) log_line("%s", line->c_str());
+    ++owner_.counters().udp_refused[std::string(udp_refusal_key(why))];
+    if (auto line = refusals_.refused(why, address, servicing_now_ns)) host::log_line("%s", line->c_str());
     return false;
 }
 
@@ -320,13 +320,13 @@ void udp_transport::on_connect(ENetPeer* peer) {
     enet_peer_timeout(peer, 0, 3000, 10000);
     udp_peer_connection& ref = *c;
     connections_.emplace(c->id(), std::move(c));
-    owner_.count_peer_opened();
-    match().connect(ref);  // refused: it is closing, its Reject queued
+    owner_.connection_opened();
+    match_of(ref).connect(ref);  // refused: it is closing, its Reject queued
 }
 
 void udp_transport::on_receive(ENetPeer* peer, ENetPacket* packet) {
     auto* c = static_cast<udp_peer_connection*>(peer->data);
-    owner_.count_in(packet->dataLength);
+    owner_.intake().count_bytes(packet->dataLength);
     if (c != nullptr && !c->closing()) c->receive(std::span<const uint8_t>(packet->data, packet->dataLength), now_ns());
     enet_packet_destroy(packet);
 }
@@ -337,22 +337,23 @@ void udp_transport::on_disconnect(ENetPeer* peer) {
     if (c == nullptr) return;  // never connected
     c->forget_peer();
     if (!c->closing())
-        match().disconnect(*c, {match::close_cause::kind::connection_closed, {}, "the ENet peer disconnected"});
+        match_of(*c).disconnect(*c, {match::close_cause::kind::connection_closed, {}, "the ENet peer disconnected"});
     if (auto it = connections_.find(c->id()); it != connections_.end()) forget(it);
 }
 
 std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator udp_transport::forget(
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator it) {
-    owner_.count_peer_closed();
-    return connections_.erase(it);
+    auto next = connections_.erase(it);
+    owner_.connection_closed();
+    return next;
 }
 
 void udp_transport::count_fragmented_snapshot() {
-    owner_.count_fragmented_snapshot();
+    ++owner_.counters().snapshots_fragmented;
 }
 
 void udp_transport::count_snapshot_copy() {
-    owner_.count_snapshot_copy();
+    ++owner_.counters().snapshot_copies;
 }
 
 void udp_transport::reap_closing() {

@@ -1,5 +1,7 @@
 #pragma once
-// The UDP transport: ENet peers feeding the same match as TCP, on the same io_context thread.
+// The UDP transport: ENet peers feeding the same intake as TCP, on the host's io_context thread.
+// It flushes what ENet queued in a handler posted by the first send (flush_soon), which also sends
+// the snapshot copies that are due, so it needs no flush after the tick.
 // ENet's socket is watched by Asio (a readable wait on a duplicate of its descriptor); each
 // wake-up services ENet without blocking, and a short timer lets ENet resend and time out.
 // Before ENet reads a datagram, the connect gate (udp_connect_gate.hpp) refuses connects over
@@ -17,14 +19,13 @@
 #include <string>
 #include <vector>
 
+#include "server/host/transport.hpp"
 #include "server/match/match.hpp"
 #include "server/net/udp_connect_gate.hpp"
 #include "server/net/udp_peer_connection.hpp"
 #include "server/net/udp_refusal_log.hpp"
 
 namespace arena::net {
-
-class server;
 
 struct udp_options {
     uint16_t port = 0;       // 0: any free port
@@ -50,23 +51,26 @@ struct udp_options {
     size_t max_waiting_bytes = 4 * (4 + 64 * 1024);
 };
 
-class udp_transport {
+class udp_transport final : public host::transport {
 public:
-    udp_transport(boost::asio::io_context& io, server& owner, udp_options options);
-    ~udp_transport();
+    udp_transport(host::transport_host& host, udp_options options);
+    ~udp_transport() override;
     udp_transport(const udp_transport&) = delete;
     udp_transport& operator=(const udp_transport&) = delete;
 
     // Binds the server's --bind address and prints "udp listening on HOST:PORT". Throws when
     // ENet cannot bind.
-    void start();
+    void start() override;
+    uint64_t open_connections() const override { return connections_.size(); }
+    // Its last words go out with ENet's disconnect, flushed at once (udp_peer_connection.cpp).
+    bool drains_at_shutdown() const override { return false; }
     uint16_t port() const { return port_; }
 
     // For the peer connections.
-    match::match& match();
+    match::match& match_of(const match::connection& c);
+    host::intake& intake();
     int64_t now_ns() const;
     void count_out(size_t bytes);
-    void count_message_in();
     void count_fragmented_snapshot();
     void count_snapshot_copy();
     size_t snapshot_budget() const { return options_.snapshot_budget; }
@@ -88,7 +92,7 @@ private:
     void on_disconnect(ENetPeer* peer);
     void reap_closing();
     void send_due_copies();  // the snapshot copies whose time came
-    // Forgets a peer's connection; the server counts it closed.
+    // Forgets a peer's connection; the host hears that it closed.
     std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator forget(
         std::map<uint64_t, std::unique_ptr<udp_peer_connection>>::iterator it);
     static int ENET_CALLBACK intercept(ENetHost* host, ENetEvent* event);
@@ -109,7 +113,7 @@ private:
     void reap_half_open();
 
     boost::asio::io_context& io_;
-    server& owner_;
+    host::transport_host& owner_;  // the process host
     udp_options options_;
     ENetHost* host_ = nullptr;
     uint16_t port_ = 0;

@@ -5,8 +5,7 @@
 #include <boost/beast/websocket.hpp>
 #include <cstdio>
 
-#include "server/net/log.hpp"
-#include "server/net/server.hpp"
+#include "server/host/log.hpp"
 #include "server/net/ws_session.hpp"
 
 namespace arena::net {
@@ -69,16 +68,15 @@ bool origin_allowed(const std::vector<std::string>& allowed, std::string_view or
 
 }  // namespace
 
-web_transport::web_transport(boost::asio::io_context& io, server& owner, web_options options,
-                             ops::http_handlers handlers)
-    : io_(io),
-      owner_(owner),
+web_transport::web_transport(host::transport_host& host, web_options options, ops::http_handlers handlers)
+    : io_(host.io()),
+      host_(host),
       options_(std::move(options)),
       handlers_(std::move(handlers)),
       files_(options_.web_root),
-      acceptor_(io),
-      accept_backoff_("http", [](const std::string& line) { log_line("%s", line.c_str()); }),
-      watchdog_(io),
+      acceptor_(host.io()),
+      accept_backoff_("http", [](const std::string& line) { host::log_line("%s", line.c_str()); }),
+      watchdog_(host.io()),
       alive_(std::make_shared<bool>(true)) {}
 
 web_transport::~web_transport() {
@@ -90,18 +88,18 @@ web_transport::~web_transport() {
 }
 
 void web_transport::start() {
-    const tcp::endpoint endpoint(boost::asio::ip::make_address(owner_.options().bind), options_.port);
+    const tcp::endpoint endpoint(boost::asio::ip::make_address(host_.options().bind), options_.port);
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(tcp::acceptor::reuse_address(true));
     acceptor_.bind(endpoint);
     acceptor_.listen(boost::asio::socket_base::max_listen_connections);
     port_ = acceptor_.local_endpoint().port();
-    std::printf("http listening on %s:%u\n", owner_.options().bind.c_str(), port_);
+    std::printf("http listening on %s:%u\n", host_.options().bind.c_str(), port_);
     std::fflush(stdout);
     const std::string root = files_.serving() ? files_.root().string() : std::string("(none)");
-    log_line("http: /ws, /metrics, /healthz and files from %s on %s:%u; origins: %s", root.c_str(),
-             owner_.options().bind.c_str(), port_,
-             options_.allowed_origins.empty() ? "any" : std::to_string(options_.allowed_origins.size()).c_str());
+    host::log_line("http: /ws, /metrics, /healthz and files from %s on %s:%u; origins: %s", root.c_str(),
+                   host_.options().bind.c_str(), port_,
+                   options_.allowed_origins.empty() ? "any" : std::to_string(options_.allowed_origins.size()).c_str());
     boost::asio::co_spawn(io_, accept_loop(), boost::asio::detached);
     watch_stalls();
 }
@@ -111,23 +109,24 @@ void web_transport::watch_stalls() {
     watchdog_.async_wait([this, alive = alive_](const boost::system::error_code& ec) {
         if (ec || !*alive) return;
         // Like the TCP sessions': output that has not moved for the stall timeout drops the client.
-        const int64_t now = owner_.now_ns();
+        const int64_t now = host_.now_ns();
         std::vector<std::shared_ptr<ws_session>> stalled;
         for (auto& [id, s] : sessions_)
-            if (!s->closing() && s->stalled_ns(now) > owner_.options().stall_timeout_ns) stalled.push_back(s);
+            if (!s->closing() && s->stalled_ns(now) > host_.options().stall_timeout_ns) stalled.push_back(s);
         for (auto& s : stalled)
-            owner_.match().reject(*s, {protocol::RejectCode::slow_consumer, "no progress writing to the client"});
+            host_.matches().match_of(*s).reject(
+                *s, {protocol::RejectCode::slow_consumer, "no progress writing to the client"});
         watch_stalls();
     });
 }
 
 void web_transport::on_open(const std::shared_ptr<ws_session>& s) {
     sessions_.emplace(s->id(), s);
-    owner_.transport_opened();
+    host_.connection_opened();
 }
 
 void web_transport::on_gone(ws_session& s) {
-    if (sessions_.erase(s.id()) > 0) owner_.transport_closed();
+    if (sessions_.erase(s.id()) > 0) host_.connection_closed();
 }
 
 void web_transport::forget_http(http_conn& c) {
@@ -178,7 +177,7 @@ boost::asio::awaitable<void> web_transport::accept_loop() {
 boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> conn) {
     const auto alive = alive_;
     const std::string peer = describe(conn->stream.socket());
-    const server_options& game = owner_.options();
+    const host::host_options& game = host_.options();
     // The whole head within the handshake timeout: an upgrade that never completes holds a
     // slot no longer than a TCP client that never says Hello.
     conn->stream.expires_after(std::chrono::nanoseconds(game.handshake_timeout_ns));
@@ -200,18 +199,18 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
     if (ec) {
         const bool said_nothing = buffer.size() == 0 && !parser.got_some();
         if (ec == beast::error::timeout) {
-            log_line("http: %s: request head not complete within %.1f s", peer.c_str(),
-                     seconds(game.handshake_timeout_ns));
+            host::log_line("http: %s: request head not complete within %.1f s", peer.c_str(),
+                           seconds(game.handshake_timeout_ns));
         } else if (ec == http::error::header_limit || ec == http::error::buffer_overflow) {
-            log_line("http: %s: request head larger than %zu bytes", peer.c_str(), options_.max_request_bytes);
+            host::log_line("http: %s: request head larger than %zu bytes", peer.c_str(), options_.max_request_bytes);
             reply =
                 text_response(431, "text/plain; charset=utf-8",
                               "request head larger than " + std::to_string(options_.max_request_bytes) + " bytes\n");
         } else if (ec == http::error::end_of_stream || ec == boost::asio::error::eof ||
                    ec == boost::asio::error::connection_reset) {
-            if (!said_nothing) log_line("http: %s: closed inside its request head", peer.c_str());
+            if (!said_nothing) host::log_line("http: %s: closed inside its request head", peer.c_str());
         } else {
-            log_line("http: %s: bad request: %s", peer.c_str(), ec.message().c_str());
+            host::log_line("http: %s: bad request: %s", peer.c_str(), ec.message().c_str());
             reply = text_response(400, "text/plain; charset=utf-8", ec.message() + "\n");
         }
     } else {
@@ -224,10 +223,10 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
                 reply = text_response(426, "text/plain; charset=utf-8", "/ws is a WebSocket endpoint\n");
                 reply->set(http::field::upgrade, "websocket");
             } else if (!origin_allowed(options_.allowed_origins, origin)) {
-                log_line("ws: %s: upgrade refused: Origin '%.*s' is not allowed (--allowed-origin)", peer.c_str(),
-                         static_cast<int>(std::min<size_t>(origin.size(), 200)), origin.data());
+                host::log_line("ws: %s: upgrade refused: Origin '%.*s' is not allowed (--allowed-origin)", peer.c_str(),
+                               static_cast<int>(std::min<size_t>(origin.size(), 200)), origin.data());
                 reply = text_response(403, "text/plain; charset=utf-8", "origin not allowed\n");
-            } else if (owner_.shutting_down()) {
+            } else if (host_.shutting_down()) {
                 reply = text_response(503, "text/plain; charset=utf-8", "shutting down\n");
             } else {
                 // From here the match bounds it (with TCP's connections): no longer an HTTP slot.
@@ -257,8 +256,9 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
                                       "not found: the server records no session (--record)\n");
             } else if (!file) {
                 if (why.hostile)
-                    log_line("http: %s: refused path '%.*s': %s", peer.c_str(),
-                             static_cast<int>(std::min<size_t>(path.size(), 200)), path.data(), why.reason.c_str());
+                    host::log_line("http: %s: refused path '%.*s': %s", peer.c_str(),
+                                   static_cast<int>(std::min<size_t>(path.size(), 200)), path.data(),
+                                   why.reason.c_str());
                 reply = text_response(why.status, "text/plain; charset=utf-8",
                                       why.status == 404 ? "not found\n" : why.reason + "\n");
             } else {

@@ -7,7 +7,8 @@
 // Plain HTTP is one request per connection (Connection: close). Every connection that has not
 // become a WebSocket is bounded like the ops endpoint: its request head in size and time, at
 // most max_http_connections at once (a new one takes the slot of the oldest still sending its
-// head). An upgraded connection is the match's, whose admission counts it with TCP's.
+// head). An upgraded connection is the match's, whose admission counts it with TCP's. Its stall
+// watchdog is its own 250 ms timer, so that it runs while the host drains as well.
 // Beast stays in web_transport.cpp and ws_session.cpp (it is heavy to compile).
 #include <boost/asio.hpp>
 #include <cstdint>
@@ -18,13 +19,13 @@
 #include <string>
 #include <vector>
 
+#include "server/host/transport.hpp"
 #include "server/net/static_files.hpp"
 #include "server/ops/accept_backoff.hpp"
 #include "server/ops/http_routes.hpp"
 
 namespace arena::net {
 
-class server;
 class ws_session;
 struct http_conn;  // web_transport.cpp
 
@@ -40,20 +41,21 @@ struct web_options {
     uint32_t ws_ping_burst = 20;
 };
 
-class web_transport {
+class web_transport final : public host::transport {
 public:
     // handlers: what /metrics and /healthz answer (the ops service's).
-    web_transport(boost::asio::io_context& io, server& owner, web_options options, ops::http_handlers handlers);
-    ~web_transport();
+    web_transport(host::transport_host& host, web_options options, ops::http_handlers handlers);
+    ~web_transport() override;
     web_transport(const web_transport&) = delete;
     web_transport& operator=(const web_transport&) = delete;
 
     // Binds the server's --bind address, prints "http listening on HOST:PORT", and serves.
-    void start();
+    void start() override;
+    uint64_t open_connections() const override { return sessions_.size(); }
     uint16_t port() const { return port_; }
 
     // For the WebSocket sessions.
-    server& owner() { return owner_; }
+    host::transport_host& host() { return host_; }
     const web_options& options() const { return options_; }
     void on_open(const std::shared_ptr<ws_session>& s);
     void on_gone(ws_session& s);
@@ -71,7 +73,7 @@ private:
     bool evict_oldest_waiting();
 
     boost::asio::io_context& io_;
-    server& owner_;
+    host::transport_host& host_;
     web_options options_;
     ops::http_handlers handlers_;
     static_files files_;

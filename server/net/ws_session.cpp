@@ -3,9 +3,8 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 
-#include "protocol/verify.hpp"
-#include "server/net/log.hpp"
-#include "server/net/server.hpp"
+#include "server/host/intake.hpp"
+#include "server/host/log.hpp"
 #include "server/net/web_transport.hpp"
 
 namespace arena::net {
@@ -30,16 +29,19 @@ constexpr size_t read_chunk = 4096;
 ws_session::ws_session(beast::tcp_stream stream, web_transport& owner, uint64_t id, std::string peer)
     : ws_(std::move(stream)),
       owner_(owner),
-      match_(owner.owner().match()),
       id_(id),
       peer_(std::move(peer)),
-      output_(owner.owner().options().max_control_frames),
+      output_(owner.host().options().max_control_frames),
       wake_(ws_.get_executor()),
       linger_(ws_.get_executor()) {}
 
+match::match& ws_session::game() {
+    return owner_.host().matches().match_of(*this);
+}
+
 boost::asio::awaitable<void> ws_session::run(request upgrade) {
     auto self = shared_from_this();
-    const server_options& o = owner_.owner().options();
+    const host::host_options& o = owner_.host().options();
     // As a TCP session's socket: no Nagle delay for a snapshot behind a small frame, and the
     // kernel's send buffer bounded (--socket-send-buffer), so that a client that does not read
     // shows as a stall instead of megabytes held for it.
@@ -70,7 +72,7 @@ boost::asio::awaitable<void> ws_session::run(request upgrade) {
         if (kind == websocket::frame_type::close || ping_refused_ || closing_) return;
         // Each ping costs a pong written back: bounded like the protocol's own Pings.
         const web_options& w = owner_.options();
-        if (pings_.take(owner_.owner().now_ns(), w.max_ws_pings_per_second, w.ws_ping_burst)) return;
+        if (pings_.take(owner_.host().now_ns(), w.max_ws_pings_per_second, w.ws_ping_burst)) return;
         ping_refused_ = true;
         reject_later({RejectCode::ping_limit,
                       "more than " + std::to_string(w.max_ws_pings_per_second) + " WebSocket pings a second"});
@@ -79,14 +81,14 @@ boost::asio::awaitable<void> ws_session::run(request upgrade) {
     boost::system::error_code ec;
     co_await ws_.async_accept(upgrade, use_ec(ec));
     if (ec) {
-        log_line("ws: %s: upgrade not completed: %s", peer_.c_str(), ec.message().c_str());
+        host::log_line("ws: %s: upgrade not completed: %s", peer_.c_str(), ec.message().c_str());
         beast::get_lowest_layer(ws_).socket().close(ec);
         co_return;
     }
     opened_ = true;
     owner_.on_open(self);
     boost::asio::co_spawn(ws_.get_executor(), writer(), [self](std::exception_ptr) {});
-    match_.connect(*this);  // after the writer started, so that a refused client reads why
+    game().connect(*this);  // after the writer started, so that a refused client reads why
     co_await reader();
 }
 
@@ -99,8 +101,9 @@ boost::asio::awaitable<void> ws_session::reader() {
         if (ec == websocket::error::message_too_big) {
             // Beast refused the frame by its header, before buffering it, and answered with the
             // close code 1009; the Reject below may not get through, the log line does.
-            match_.reject(*this, {RejectCode::too_large,
-                                  "a WebSocket message over " + std::to_string(max_message_bytes) + " bytes"});
+            owner_.host().intake().refuse(
+                *this,
+                {RejectCode::too_large, "a WebSocket message over " + std::to_string(max_message_bytes) + " bytes"});
             co_return;
         }
         if (ec) {
@@ -109,39 +112,35 @@ boost::asio::awaitable<void> ws_session::reader() {
                 ec == websocket::error::closed || ec == boost::asio::error::eof || ec == beast::error::timeout;
             const kind what = !closed ? kind::socket_error
                                       : (reader_.buffered() > 0 ? kind::closed_mid_frame : kind::connection_closed);
-            match_.disconnect(*this, {what, {}, closed ? std::string() : ec.message()});
+            game().disconnect(*this, {what, {}, closed ? std::string() : ec.message()});
             close_now();
             co_return;
         }
         if (!ws_.got_binary()) {
-            match_.reject(*this, {RejectCode::bad_request, "a text message: the protocol is binary frames"});
+            owner_.host().intake().refuse(*this,
+                                          {RejectCode::bad_request, "a text message: the protocol is binary frames"});
             co_return;
         }
-        owner_.owner().count_in(n);
+        owner_.host().intake().count_bytes(n);
         if (!take({chunk.data(), n}, ws_.is_message_done())) co_return;
     }
 }
 
 bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
+    host::intake& intake = owner_.host().intake();
     while (!data.empty() && !closing_) {
         if (frame_in_message_) {
-            match_.reject(*this, {RejectCode::bad_request, "a WebSocket message holds more than one frame"});
+            intake.refuse(*this, {RejectCode::bad_request, "a WebSocket message holds more than one frame"});
             return false;
         }
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
-            match_.reject(*this, match::admission::unreadable(reader_));
+            intake.refuse_unreadable(*this, reader_);
             return false;
         }
         if (!reader_.has_frame()) break;  // the rest of the frame is in the message's next bytes
         frame_in_message_ = true;
-        auto verified = protocol::verify_message(reader_.frame(), protocol::client_frame_limits);
-        if (!verified) {
-            match_.reject(*this, match::admission::unverified(verified.error));
-            return false;
-        }
-        owner_.owner().count_message_in();
-        const bool go_on = match_.receive(*this, *verified.value, owner_.owner().now_ns());
+        const bool go_on = intake.take(*this, reader_.frame(), owner_.host().now_ns()).go_on;
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing
@@ -151,7 +150,7 @@ bool ws_session::take(std::span<const uint8_t> data, bool message_done) {
     if (closing_) return false;
     if (message_done) {
         if (!frame_in_message_) {
-            match_.reject(*this, {RejectCode::bad_request, reader_.buffered() == 0
+            intake.refuse(*this, {RejectCode::bad_request, reader_.buffered() == 0
                                                                ? std::string("an empty WebSocket message")
                                                                : "a WebSocket message ends inside a frame, after " +
                                                                      std::to_string(reader_.buffered()) + " bytes"});
@@ -169,13 +168,13 @@ boost::asio::awaitable<void> ws_session::writer() {
             if (!bytes->empty()) {
                 co_await ws_.async_write(boost::asio::buffer(bytes->data(), bytes->size()), use_ec(ec));
                 if (ec) {
-                    if (!closing_) match_.disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
+                    if (!closing_) game().disconnect(*this, {match::close_cause::kind::write_failed, {}, ec.message()});
                     close_now();
                     co_return;
                 }
-                owner_.owner().count_out(bytes->size());
+                owner_.host().count_out(bytes->size());
             }
-            output_.written(owner_.owner().now_ns());
+            output_.written(owner_.host().now_ns());
         } else if (closing_) {
             // The last word is out: the closing handshake, bounded by the handshake timeout
             // (and the linger timer).
@@ -193,13 +192,13 @@ boost::asio::awaitable<void> ws_session::writer() {
 void ws_session::reject_later(match::rejection why) {
     // Not from inside Beast's read (or a call the match made): the refusal goes through the match.
     boost::asio::post(ws_.get_executor(), [self = shared_from_this(), why = std::move(why)] {
-        if (!self->closing_) self->match_.reject(*self, why);
+        if (!self->closing_) self->game().reject(*self, why);
     });
 }
 
 void ws_session::send(protocol::frame_bytes frame) {
     if (closing_) return;
-    if (!output_.push_control(std::move(frame), owner_.owner().now_ns())) {
+    if (!output_.push_control(std::move(frame), owner_.host().now_ns())) {
         reject_later({RejectCode::slow_consumer, "too many messages waiting to be sent"});
         return;
     }
@@ -208,13 +207,13 @@ void ws_session::send(protocol::frame_bytes frame) {
 
 void ws_session::send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) {
     if (closing_) return;
-    output_.put_snapshot(snapshot, ack_sequence, owner_.owner().now_ns());
+    output_.put_snapshot(snapshot, ack_sequence, owner_.host().now_ns());
     wake_.cancel();
 }
 
 void ws_session::send_snapshot_frame(std::span<const uint8_t> frame) {
     if (closing_) return;
-    output_.put_snapshot_frame(frame, owner_.owner().now_ns());
+    output_.put_snapshot_frame(frame, owner_.host().now_ns());
     wake_.cancel();
 }
 
@@ -235,7 +234,7 @@ void ws_session::close_after(protocol::frame_bytes last_frame) {
     closing_ = true;
     output_.keep_only(std::move(last_frame));
     wake_.cancel();
-    linger_.expires_after(std::chrono::nanoseconds(owner_.owner().options().close_grace_ns));
+    linger_.expires_after(std::chrono::nanoseconds(owner_.host().options().close_grace_ns));
     linger_.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
         if (!e) self->close_now();
     });

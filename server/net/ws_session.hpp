@@ -52,7 +52,9 @@ public:
 private:
     boost::asio::awaitable<void> reader();
     boost::asio::awaitable<void> writer();
-    // The bytes of one read (part of a message): framed, verified, handed over; false: stop.
+    // The match this session belongs to (the host's registry says which).
+    match::match& game();
+    // The bytes of one read (part of a message): framed, handed to the intake; false: stop.
     bool take(std::span<const uint8_t> data, bool message_done);
     void reject_later(match::rejection why);
     void close_after(protocol::frame_bytes last_frame);
@@ -60,7 +62,6 @@ private:
 
     boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
     web_transport& owner_;
-    match::match& match_;
     uint64_t id_;
     std::string peer_;
     protocol::frame_reader reader_;

@@ -1,6 +1,6 @@
 // arena-server's command line and signals (server/server_main.cpp, server/cli/): every
-// numeric flag that a conversion could overflow is bounded, and SIGPIPE and SIGHUP end a match
-// in order instead of killing it.
+// numeric flag that a conversion could overflow is bounded, and SIGPIPE, SIGHUP and SIGUSR1
+// end a match in order instead of killing it.
 #include <signal.h>
 #include <unistd.h>
 
@@ -115,6 +115,28 @@ TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recordi
     auto bye = client.read_until(Payload::Bye);
     REQUIRE(bye);
     CHECK(protocol::decode_bye(*message_of(*bye)).value.reason.find("SIGHUP") != std::string::npos);
+    CHECK(server.stop(0) == 0);
+    CHECK(read_file(stats).find("\"joins\": 1") != std::string::npos);
+    const auto replayed = run_command(program("arena-replay") + " " + recording + " 2>&1");
+    INFO(replayed.output);
+    CHECK(replayed.exit_code == 0);
+    std::remove(stats.c_str());
+    std::remove(recording.c_str());
+}
+
+TEST_CASE("SIGUSR1 ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
+    // SIGUSR1's default action killed the server at once: no Bye, no --stats-json, a recording
+    // without its end. It is one of the signals the host ends a run on, in order.
+    const std::string stats = temp_path("usr1-stats.json"), recording = temp_path("usr1.arpl");
+    server_process server({"--stats-json", stats, "--record", recording});
+    test_client client(server.port());
+    client.send_frame(protocol::encode_hello(protocol::protocol_version, "usr1", ""));
+    REQUIRE(client.read_until(Payload::Welcome));
+    REQUIRE(client.read_until(Payload::Snapshot));
+    ::kill(server.pid(), SIGUSR1);
+    auto bye = client.read_until(Payload::Bye);
+    REQUIRE(bye);
+    CHECK(protocol::decode_bye(*message_of(*bye)).value.reason.find("SIGUSR1") != std::string::npos);
     CHECK(server.stop(0) == 0);
     CHECK(read_file(stats).find("\"joins\": 1") != std::string::npos);
     const auto replayed = run_command(program("arena-replay") + " " + recording + " 2>&1");

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 
-#include "server/net/tick_clock.hpp"
+#include "server/host/tick_clock.hpp"
 
-using arena::net::tick_clock;
+using arena::host::tick_clock;
 
 TEST_CASE("the tick clock runs one tick per period and never drifts", "[net][clock]") {
     tick_clock clock(1000, 10);

@@ -42,7 +42,7 @@ match_sim::match_sim(const match::match_config& config, const world::world_confi
         p.delta_snapshots = options.delta_snapshots;
         p.unordered = options.kind == link_kind::datagram;
         auto c = std::make_unique<sim_client>(shared_, std::move(p), options.kind, options, i);
-        c->server = std::make_unique<server_end>(game_, c->down, now_, "sim-" + std::to_string(i));
+        c->server = std::make_unique<server_end>(intake_, c->down, now_, "sim-" + std::to_string(i));
         c->launch_at = i * options.launch_spacing;
         c->phase = phases.upto(period - 1);
         c->next_tick = c->phase + period;

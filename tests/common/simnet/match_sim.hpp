@@ -66,6 +66,10 @@ private:
     [[nodiscard]] sim_time server_tick_time(std::uint64_t tick) const;
 
     arena::match::match game_;
+    // The process's side of the server ends: their frames come in as a transport's do.
+    ops::process_counters counters_;
+    host::match_registry matches_{game_};
+    host::intake intake_{matches_, counters_};
     sim_options options_;
     bots::client_shared shared_;
     std::vector<std::unique_ptr<sim_client>> clients_;

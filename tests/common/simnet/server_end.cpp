@@ -8,11 +8,11 @@ namespace arena::simnet {
 using protocol::Payload;
 using protocol::RejectCode;
 
-server_end::server_end(match::match& game, path& down, const sim_time& now, std::string peer)
-    : game_(game), down_(down), now_(now), peer_(std::move(peer)) {}
+server_end::server_end(host::intake& intake, path& down, const sim_time& now, std::string peer)
+    : intake_(intake), down_(down), now_(now), peer_(std::move(peer)) {}
 
 void server_end::open() {
-    game_.connect(*this);
+    intake_.matches().match_of(*this).connect(*this);
 }
 
 void server_end::on_data(std::span<const std::uint8_t> data) {
@@ -20,7 +20,7 @@ void server_end::on_data(std::span<const std::uint8_t> data) {
     if (down_.kind() == link_kind::datagram) return on_frame(data);
     while (!data.empty() && !closed_) {
         data = data.subspan(reader_.feed(data));
-        if (reader_.failed()) return game_.reject(*this, match::admission::unreadable(reader_));
+        if (reader_.failed()) return intake_.refuse_unreadable(*this, reader_);
         if (!reader_.has_frame()) return;
         on_frame(reader_.frame());
         reader_.next();
@@ -32,18 +32,18 @@ void server_end::on_frame(std::span<const std::uint8_t> frame) {
     // frame 8-byte aligned.
     if (down_.kind() == link_kind::datagram) {
         if (reader_.feed(frame) != frame.size() || !reader_.has_frame())
-            return game_.reject(*this, {RejectCode::bad_request, "a datagram that is not exactly one frame"});
+            return intake_.refuse(*this, {RejectCode::bad_request, "a datagram that is not exactly one frame"});
         frame = reader_.frame();
     }
-    const auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
-    if (!verified) return game_.reject(*this, match::admission::unverified(verified.error));
-    const protocol::Message& message = *verified.value;
-    if (game_.receive(*this, message)) {
+    // No clock here: the match takes the message as arrived at its current tick's time.
+    const host::intake_result taken = intake_.take(*this, frame, std::nullopt);
+    if (taken.go_on) {
         // The match took it (a stale one included): the tests' ledger sees what it was given.
-        if (message.payload_type() == Payload::Input && on_input) on_input(protocol::decode_input(message).value);
-    } else if (!closed_) {
+        if (taken.message->payload_type() == Payload::Input && on_input)
+            on_input(protocol::decode_input(*taken.message).value);
+    } else if (taken.message != nullptr && !closed_) {
         // The client said Bye: the match let it go, and the connection closes without a word.
-        const auto bye = protocol::decode_bye(message);
+        const auto bye = protocol::decode_bye(*taken.message);
         close_after({}, "client said bye: " + (bye ? bye.value.reason : std::string("(unreadable)")));
     }
     if (down_.kind() == link_kind::datagram && !closed_) reader_.next();
@@ -51,7 +51,7 @@ void server_end::on_frame(std::span<const std::uint8_t> frame) {
 
 void server_end::on_end() {
     if (closed_) return;
-    game_.disconnect(*this, {match::close_cause::kind::connection_closed, {}, {}});
+    intake_.matches().match_of(*this).disconnect(*this, {match::close_cause::kind::connection_closed, {}, {}});
     close_after({}, "connection closed");
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // The server's end of one simulated connection: what a transport does for the match, over a
-// simulated path instead of a socket. Bytes (or datagrams) in are framed, verified and handed
-// to the match; the match's frames go out on the downward path at once (a socket that always
-// has room: no snapshot is ever replaced while waiting). It sees every Input the match accepts
-// and every snapshot's ack, for the tests' checks.
+// simulated path instead of a socket. Bytes (or datagrams) in are framed and handed to the
+// intake (server/host/intake.hpp), which verifies them and hands them to the match; the match's frames go out on the
+// downward path at once (a socket that always has room: no snapshot is ever replaced while waiting). It sees every
+// Input the match accepts and every snapshot's ack, for the tests' checks.
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "protocol/framing.hpp"
+#include "server/host/intake.hpp"
 #include "server/match/match.hpp"
 #include "simnet/path.hpp"
 
@@ -18,7 +19,8 @@ namespace arena::simnet {
 
 class server_end : public match::connection {
 public:
-    server_end(match::match& game, path& down, const sim_time& now, std::string peer);
+    // Frames go through `intake`, as a transport's do; the connection's match is the intake's.
+    server_end(host::intake& intake, path& down, const sim_time& now, std::string peer);
 
     // The client connected: the match is handed this connection (it may refuse it).
     void open();
@@ -35,7 +37,7 @@ public:
     void close_with_result(std::string_view reason, const protocol::match_result& result) override;
     std::string_view peer() const override { return peer_; }
 
-    [[nodiscard]] std::uint32_t player_id() const { return game_.player_of(*this); }
+    [[nodiscard]] std::uint32_t player_id() const { return intake_.matches().match_of(*this).player_of(*this); }
     [[nodiscard]] std::uint32_t body_id() const { return body_id_; }  // from the Welcome sent
     [[nodiscard]] bool closed() const { return closed_; }
     [[nodiscard]] const std::string& close_reason() const { return close_reason_; }
@@ -48,7 +50,7 @@ private:
     void on_frame(std::span<const std::uint8_t> frame);
     void close_after(const protocol::frame_bytes& last_word, std::string reason);
 
-    match::match& game_;
+    host::intake& intake_;
     path& down_;
     const sim_time& now_;
     std::string peer_;

@@ -1,8 +1,8 @@
-#include "server/net/log.hpp"
+#include "server/host/log.hpp"
 
 #include <chrono>
 
-namespace arena::net {
+namespace arena::host {
 
 namespace {
 const auto process_start = std::chrono::steady_clock::now();
@@ -22,4 +22,4 @@ void log_line(const char* format, ...) {
     std::fprintf(stderr, "[%9.3f] %s\n", t, line);
 }
 
-}  // namespace arena::net
+}  // namespace arena::host

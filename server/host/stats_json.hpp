@@ -5,7 +5,7 @@
 
 #include "server/match/figures.hpp"
 
-namespace arena::net {
+namespace arena::host {
 
 class stats_json_sink : public match::figure_sink {
 public:
@@ -25,4 +25,4 @@ private:
     nlohmann::json& out_;
 };
 
-}  // namespace arena::net
+}  // namespace arena::host

@@ -1,6 +1,6 @@
-#include "server/net/stats_json.hpp"
+#include "server/host/stats_json.hpp"
 
-namespace arena::net {
+namespace arena::host {
 
 nlohmann::json* stats_json_sink::field(const match::figure& f) {
     if (f.stats.empty()) return nullptr;
@@ -19,4 +19,4 @@ void stats_json_sink::counters_by(const match::figure& f, std::string_view,
         if (count != 0) (*at)[key] = count;
 }
 
-}  // namespace arena::net
+}  // namespace arena::host

@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-namespace arena::net {
+namespace arena::host {
 
 class duration_histogram {
 public:
@@ -45,4 +45,4 @@ private:
     int64_t sum_ns_ = 0;
 };
 
-}  // namespace arena::net
+}  // namespace arena::host

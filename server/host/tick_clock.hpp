@@ -5,7 +5,7 @@
 // caller passes the time in, so it is tested in virtual time.
 #include <cstdint>
 
-namespace arena::net {
+namespace arena::host {
 
 class tick_clock {
 public:
@@ -45,4 +45,4 @@ private:
     uint64_t overruns_ = 0;
 };
 
-}  // namespace arena::net
+}  // namespace arena::host

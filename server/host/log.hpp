@@ -6,7 +6,7 @@
 
 #include "server/match/logger.hpp"
 
-namespace arena::net {
+namespace arena::host {
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 1, 2)))
@@ -16,4 +16,4 @@ void log_line(const char* format, ...);
 // A logger for the match that writes through log_line.
 match::logger server_logger();
 
-}  // namespace arena::net
+}  // namespace arena::host

@@ -1,0 +1,84 @@
+// --stats-json: the run's figures at exit, for the benchmarks, capacity planning and scripts.
+#include <sys/resource.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "protocol/version.hpp"
+#include "server/config/scoreboard_json.hpp"
+#include "server/host/host.hpp"
+#include "server/host/log.hpp"
+#include "server/host/stats_json.hpp"
+
+namespace arena::host {
+
+namespace {
+
+double ms(int64_t ns) {
+    return static_cast<double>(ns) / 1e6;
+}
+
+// CPU time and peak memory of this process.
+nlohmann::json process_figures() {
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    auto seconds = [](const timeval& t) {
+        return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6;
+    };
+    return {{"cpu_user_s", seconds(usage.ru_utime)},
+            {"cpu_system_s", seconds(usage.ru_stime)},
+            {"peak_rss_kib", usage.ru_maxrss}};
+}
+
+}  // namespace
+
+void process_host::write_stats_json(const std::string& path) const {
+    const double seconds = static_cast<double>(now_ns() - started_ns_) / 1e9;
+    const ops::process_counters p = process_counters();
+    nlohmann::json j = {
+        {"duration_s", seconds},
+        {"tick_rate", options_.match.tick_rate},
+        {"snapshot_rate", options_.match.snapshot_rate},
+        {"tick_ms",
+         {{"p50", ms(run_ticks_.quantile_ns(0.5))},
+          {"p99", ms(run_ticks_.quantile_ns(0.99))},
+          {"max", ms(run_ticks_.max_ns())},
+          {"mean", run_ticks_.mean_ns() / 1e6}}},
+        {"snapshots", {{"view_radius", options_.match.view_radius}}},
+        {"limits",
+         {{"max_players", options_.match.max_players},
+          {"max_spectators", options_.match.max_spectators},
+          {"max_connections", match_.rules().connection_limit()},
+          {"max_pending_handshakes", match_.rules().pending_limit()},
+          {"max_inputs_per_second", match_.rules().input_limit()},
+          {"input_buffer", options_.match.input_buffer},
+          {"max_frame_bytes", protocol::max_client_frame_body},
+          {"max_control_frames", options_.max_control_frames},
+          {"socket_send_buffer", options_.socket_send_buffer},
+          {"handshake_timeout_s", static_cast<double>(options_.handshake_timeout_ns) / 1e9},
+          {"idle_timeout_s", static_cast<double>(options_.idle_timeout_ns) / 1e9},
+          {"stall_timeout_s", static_cast<double>(options_.stall_timeout_ns) / 1e9}}},
+        {"process", process_figures()},
+        {"bytes_in_per_s", seconds > 0 ? static_cast<double>(p.bytes_in) / seconds : 0},
+        {"bytes_out_per_s", seconds > 0 ? static_cast<double>(p.bytes_out) / seconds : 0},
+    };
+    // Every counter, as the match and the process name them (the same list /metrics reads).
+    // The game's scoreboard (an empty array under sandbox rules), as arena-replay --scoreboard prints it.
+    std::vector<rules::score_line> lines;
+    std::vector<std::string> names;
+    for (const match::match::named_score& s : match_.scoreboard()) {
+        lines.push_back(s.line);
+        names.push_back(s.name);
+    }
+    j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
+    // The player the rules declare the winner, as every client's last Bye says (0: nobody).
+    j["winner"] = match_.game_rules().winner();
+    stats_json_sink figures(j);
+    report(match_.counters(), figures);
+    report(p, figures);
+    std::ofstream out(path);
+    out << j.dump(2) << "\n";
+    if (!out) log_line("cannot write stats to %s", path.c_str());
+}
+
+}  // namespace arena::host
