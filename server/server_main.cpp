@@ -35,8 +35,9 @@ int main(int argc, char** argv) {
     int http_port = -1;  // off
     app.add_option("--http-port", http_port,
                    "also serve HTTP on this port (default: off; 0 picks a free one): the game over WebSocket at "
-                   "/ws, /metrics, /healthz, the web page's files at / (the replay page at /replay), and "
-                   "the --record file at /recording")
+                   "/ws, /healthz, /metrics (unless --metrics-port is set), the web page's files at / (the replay "
+                   "page at /replay), and with --serve-recording the --record file at /recording once the match "
+                   "is over")
         ->check(CLI::Range(0, 65535));
     net::web_options web;
     std::string web_root;
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
         ->check(CLI::ExistingDirectory);
     app.add_option("--allowed-origin", web.allowed_origins,
                    "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
-                   "repeatable (default: any)");
+                   "repeatable; '*' for any page (default: the server's own page, and programs that send no "
+                   "Origin)");
     uint32_t udp_snapshot_copies = 1;
     app.add_option("--udp-snapshot-copies", udp_snapshot_copies,
                    "send each UDP snapshot this many times, a tick apart: a lost one is replaced by its copy, "
@@ -215,6 +217,7 @@ int main(int argc, char** argv) {
                     net::log_line("recorded %u ticks to %s", w.tick(), record.c_str());
             };
         }
+        ops_options.recording = record;
         ops::ops_service ops(
             io, ops_options, [&] { return server.metrics_snapshot(); }, [&] { return server.ticking(); },
             [](const std::string& line) { net::log_line("%s", line.c_str()); });
@@ -231,6 +234,8 @@ int main(int argc, char** argv) {
             web.port = static_cast<uint16_t>(http_port);
             web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
             web.recording = record;
+            web.serve_recording = ops_options.serve_recording;
+            web.serve_metrics = !ops_options.metrics_port;  // else /metrics only at --metrics-bind
             http.emplace(io, server, web,
                          ops::http_handlers{[&ops] { return ops.metrics_text(); },
                                             [&server] {
