@@ -68,7 +68,7 @@ boost::asio::awaitable<std::string> send_file(beast::tcp_stream& stream, const f
                                               const file_send_limits& limits, std::shared_ptr<file_pacer> pacer,
                                               std::shared_ptr<file_progress> progress) {
     progress->started_ns = steady_now_ns();
-    // A handshake-sized deadline for the head: it is small and the kernel takes it at once.
+    // One chunk's time for each write: the head (or a 404) is far smaller than a chunk.
     const auto chunk_deadline = std::chrono::nanoseconds(std::max<int64_t>(
         1'000'000'000, static_cast<int64_t>(static_cast<double>(limits.chunk_bytes) * 1e9 /
                                             static_cast<double>(std::max<uint64_t>(limits.min_bytes_per_second, 1)))));

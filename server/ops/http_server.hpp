@@ -1,8 +1,9 @@
 #pragma once
 // The ops HTTP endpoint: GET /metrics and GET /healthz on their own port (and, with
-// --serve-recording, /recording), one request per connection. Small on purpose: it answers Prometheus, the kubelet,
-// Docker's HEALTHCHECK and an operator's curl, never players, so it bounds what a stray client can cost (request size,
-// read time, open connections) and nothing more. HTTP itself is Boost.Beast's; Beast stays inside http_server.cpp (it
+// --serve-recording, /recording), one request per connection. Small on purpose: it answers
+// Prometheus, the kubelet, Docker's HEALTHCHECK and an operator's curl, never players, so it
+// bounds what a stray client can cost (request size, read time, open connections) and nothing
+// more. HTTP itself is Boost.Beast's; Beast stays inside http_server.cpp and file_answer.cpp (it
 // is heavy to compile).
 #include <boost/asio.hpp>
 #include <cstdint>
