@@ -64,8 +64,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     int http_port = -1;  // off
     app.add_option("--http-port", http_port,
                    "also serve HTTP on this port (default: off; 0 picks a free one): the game over WebSocket at "
-                   "/ws, /metrics, /healthz, the web page's files at / (the replay page at /replay), and "
-                   "the --record file at /recording")
+                   "/ws, /healthz, /metrics (unless --metrics-port is set), the web page's files at / (the replay "
+                   "page at /replay), and with --serve-recording the --record file at /recording once the match "
+                   "is over")
         ->check(CLI::Range(0, 65535));
     net::web_options web;
     std::string web_root;
@@ -74,7 +75,8 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         ->check(CLI::ExistingDirectory);
     app.add_option("--allowed-origin", web.allowed_origins,
                    "with --http-port: only pages from this origin (e.g. https://play.example.com) may open /ws; "
-                   "repeatable (default: any)");
+                   "repeatable; '*' for any page (default: the server's own page, and programs that send no "
+                   "Origin)");
     std::string udp_snapshot_copies = "auto";
     app.add_option("--udp-snapshot-copies", udp_snapshot_copies,
                    "send each UDP snapshot this many times (1 to 3), a tick apart: a lost one is replaced by its "
@@ -169,6 +171,7 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         return 2;
     }
     ops_options.bind = options.bind;
+    ops_options.recording = out.record;
     options.close_grace_ns = static_cast<int64_t>(drain_grace_s * 1e9);
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
@@ -194,6 +197,8 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         web.port = static_cast<uint16_t>(http_port);
         web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
         web.recording = out.record;
+        web.serve_recording = ops_options.serve_recording;
+        web.serve_metrics = !ops_options.metrics_port;  // else /metrics only at --metrics-bind
         out.web = std::move(web);
     }
     return -1;

@@ -2,6 +2,7 @@
 
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
+#include <sstream>
 
 #include "server/host/intake.hpp"
 #include "server/host/log.hpp"
@@ -39,7 +40,7 @@ match::match& ws_session::game() {
     return owner_.host().matches().match_of(*this);
 }
 
-boost::asio::awaitable<void> ws_session::run(request upgrade) {
+boost::asio::awaitable<void> ws_session::run(request upgrade, std::vector<uint8_t> leftover) {
     auto self = shared_from_this();
     const host::host_options& o = owner_.host().options();
     // As a TCP session's socket: no Nagle delay for a snapshot behind a small frame, and the
@@ -79,7 +80,18 @@ boost::asio::awaitable<void> ws_session::run(request upgrade) {
     });
 
     boost::system::error_code ec;
-    co_await ws_.async_accept(upgrade, use_ec(ec));
+    if (leftover.empty()) {
+        co_await ws_.async_accept(upgrade, use_ec(ec));
+    } else {
+        // Frames sent in the same write as the upgrade were read with its head: Beast takes
+        // the head again with them, parses it and keeps the rest for the first reads (at most
+        // its 4 KiB read buffer: more is refused as a buffer overflow, in the log).
+        std::ostringstream head;
+        head << upgrade.base();
+        std::string bytes = head.str();
+        bytes.append(reinterpret_cast<const char*>(leftover.data()), leftover.size());
+        co_await ws_.async_accept(boost::asio::buffer(bytes), use_ec(ec));
+    }
     if (ec) {
         host::log_line("ws: %s: upgrade not completed: %s", peer_.c_str(), ec.message().c_str());
         beast::get_lowest_layer(ws_).socket().close(ec);

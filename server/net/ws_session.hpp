@@ -35,7 +35,8 @@ public:
     ws_session(boost::beast::tcp_stream stream, web_transport& owner, uint64_t id, std::string peer);
 
     // Answers the upgrade `upgrade`, hands the connection to the match and reads until it ends.
-    boost::asio::awaitable<void> run(request upgrade);
+    // leftover: bytes the client sent after the request head (its first frames), read first.
+    boost::asio::awaitable<void> run(request upgrade, std::vector<uint8_t> leftover);
 
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;

@@ -7,7 +7,9 @@ namespace arena::ops {
 http_response route(const http_request& request, const http_handlers& handlers) {
     const bool known = request.path == "/metrics" || request.path == "/healthz";
     if (!known) return {404, "text/plain; charset=utf-8", "not found\n"};
-    if (request.method != "GET") return {405, "text/plain; charset=utf-8", "only GET\n"};
+    // HEAD is GET without the body (the transport leaves it out): a load balancer's probe.
+    if (request.method != "GET" && request.method != "HEAD")
+        return {405, "text/plain; charset=utf-8", "only GET and HEAD\n"};
     if (request.path == "/healthz") {
         // No handler means nobody can vouch for the tick loop: say so rather than guess.
         const bool ok = handlers.healthy && handlers.healthy();

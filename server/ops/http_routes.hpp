@@ -1,6 +1,7 @@
 #pragma once
 // What the ops endpoint answers, as a pure function of the method and path: GET /metrics,
-// GET /healthz, 404 for any other path, 405 for any other method. No HTTP parsing here (Beast
+// GET /healthz (HEAD as GET: the transport sends no body), 404 for any other path, 405 for any
+// other method. No HTTP parsing here (Beast
 // does that in http_server.cpp), so the rules can be tested without a socket.
 #include <functional>
 #include <string>

@@ -7,6 +7,8 @@
 #include <list>
 #include <optional>
 
+#include "server/ops/file_answer.hpp"
+
 namespace arena::ops {
 
 namespace beast = boost::beast;
@@ -23,7 +25,9 @@ struct http_connection {
 };
 
 struct http_server::shared_state {
+    explicit shared_state(uint64_t file_rate) : pacer(std::make_shared<file_pacer>(file_rate)) {}
     bool alive = true;
+    std::shared_ptr<file_pacer> pacer;  // /recording's byte rate
     uint32_t open = 0;
     uint64_t evicted = 0;
     // Connections still sending their request head, oldest first: the ones a new connection may
@@ -112,7 +116,9 @@ read_result check_head(const http::request_parser<http::empty_body>& parser) {
 // Reads one request head of at most `limit` bytes, feeding Beast's parser as bytes arrive.
 // Deadlines: the first byte within first_byte_timeout_ns (an idle socket goes soon), the whole
 // head within read_timeout_ns of the connection's start.
-boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, const http_server_options& options) {
+// range: set to the request's Range header (for /recording).
+boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, const http_server_options& options,
+                                              std::string& range) {
     const size_t limit = options.max_request_bytes;
     const auto started = std::chrono::steady_clock::now();
     stream.expires_after(std::chrono::nanoseconds(std::min(options.first_byte_timeout_ns, options.read_timeout_ns)));
@@ -129,7 +135,10 @@ boost::asio::awaitable<read_result> read_head(beast::tcp_stream& stream, const h
         if (has_bare_lf(buffer))
             co_return read_result{{}, http_error{400, "bare LF line ending: HTTP lines end in CRLF"}};
         buffer.consume(parser.put(buffer.data(), ec));
-        if (!ec && parser.is_header_done()) co_return check_head(parser);
+        if (!ec && parser.is_header_done()) {
+            range = std::string(parser.get()[http::field::range]);
+            co_return check_head(parser);
+        }
         if (ec == http::error::header_limit || (ec == http::error::need_more && buffer.size() >= limit))
             co_return read_result{{}, http_error{431, "request head larger than " + std::to_string(limit) + " bytes"}};
         if (ec == http::error::bad_version) co_return read_result{{}, version_error(buffer)};
@@ -144,7 +153,7 @@ http_response plain(int status, std::string body) {
 http::response<http::string_body> to_beast(const http_response& r) {
     http::response<http::string_body> response{static_cast<http::status>(r.status), 11};
     response.set(http::field::content_type, r.content_type);
-    if (r.status == 405) response.set(http::field::allow, "GET");
+    if (r.status == 405) response.set(http::field::allow, "GET, HEAD");
     response.set(http::field::cache_control, "no-store");
     response.keep_alive(false);  // Connection: close: one request per connection
     response.body() = r.body;
@@ -157,9 +166,24 @@ boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> st
     ++state->open;
     conn->waiting_at = state->waiting.insert(state->waiting.end(), conn);
     conn->waiting = true;
-    const read_result head = co_await read_head(conn->stream, options);
+    std::string range;
+    const read_result head = co_await read_head(conn->stream, options, range);
     state->stop_waiting(*conn);
 
+    boost::system::error_code ec;
+    const bool head_only = head.request && head.request->method == "HEAD";
+    if (head.request && head.request->path == "/recording" && !options.recording.empty() && state->alive &&
+        (head_only || head.request->method == "GET")) {
+        // Every body's position: served here, on the private address, only with --serve-recording.
+        const file_request file{options.recording, "application/octet-stream", range, head_only, true};
+        const file_send_limits limits;
+        const auto progress = std::make_shared<file_progress>();
+        co_await send_file(conn->stream, file, limits, state->pacer, progress);
+        conn->stream.socket().shutdown(tcp::socket::shutdown_send, ec);
+        conn->stream.socket().close(ec);
+        state->uncount(*conn);
+        co_return;
+    }
     std::optional<http_response> reply;
     if (head.request)
         reply = state->alive ? route(*head.request, handlers) : plain(503, "shutting down\n");
@@ -167,11 +191,16 @@ boost::asio::awaitable<void> serve(std::shared_ptr<http_server::shared_state> st
         reply = plain(head.error->status, head.error->reason + "\n");
     // Otherwise the peer went away, the deadline passed or a newer connection took the slot:
     // nothing to answer.
-    boost::system::error_code ec;
     if (reply) {
         conn->stream.expires_after(std::chrono::nanoseconds(options.read_timeout_ns));
         auto response = to_beast(*reply);
-        co_await http::async_write(conn->stream, response, use_ec(ec));
+        if (head_only) {
+            // HEAD: GET's headers (its Content-Length too), no body.
+            http::response_serializer<http::string_body> serializer(response);
+            co_await http::async_write_header(conn->stream, serializer, use_ec(ec));
+        } else {
+            co_await http::async_write(conn->stream, response, use_ec(ec));
+        }
         conn->stream.socket().shutdown(tcp::socket::shutdown_send, ec);
     }
     conn->stream.socket().close(ec);
@@ -187,7 +216,7 @@ http_server::http_server(boost::asio::io_context& io, http_server_options option
       handlers_(std::move(handlers)),
       acceptor_(io),
       accept_backoff_("metrics", std::move(log)),
-      state_(std::make_shared<shared_state>()) {}
+      state_(std::make_shared<shared_state>(options_.file_bytes_per_second)) {}
 
 uint32_t http_server::open_connections() const {
     return state_->open;

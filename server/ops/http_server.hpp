@@ -1,11 +1,13 @@
 #pragma once
-// The ops HTTP endpoint: GET /metrics and GET /healthz on their own port, one request per
-// connection. Small on purpose: it answers Prometheus, the kubelet, Docker's HEALTHCHECK and
-// an operator's curl, never players, so it bounds what a stray client can cost (request
-// size, read time, open connections) and nothing more. HTTP itself is Boost.Beast's; Beast
-// stays inside http_server.cpp (it is heavy to compile).
+// The ops HTTP endpoint: GET /metrics and GET /healthz on their own port (and, with
+// --serve-recording, /recording), one request per connection. Small on purpose: it answers
+// Prometheus, the kubelet, Docker's HEALTHCHECK and an operator's curl, never players, so it
+// bounds what a stray client can cost (request size, read time, open connections) and nothing
+// more. HTTP itself is Boost.Beast's; Beast stays inside http_server.cpp and file_answer.cpp (it
+// is heavy to compile).
 #include <boost/asio.hpp>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -23,6 +25,10 @@ struct http_server_options {
     // At this many open connections, a new one closes the oldest that is still sending its head
     // (an idle or slow client) to take its place; when every one is being answered, it is closed.
     uint32_t max_connections = 32;
+    // --serve-recording: the --record file at /recording (empty: a 404), in chunks
+    // (file_answer.hpp), readable by a page of any origin (the replay page on --http-port).
+    std::filesystem::path recording;
+    uint64_t file_bytes_per_second = 32 << 20;  // /recording's bytes, on the game's thread
 };
 
 class http_server {

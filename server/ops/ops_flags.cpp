@@ -23,6 +23,10 @@ void add_ops_flags(CLI::App& app, ops_options& options) {
                 return ec ? "not an IP address: '" + text + "'" : std::string();
             },
             "IP address"));
+    app.add_flag("--serve-recording", options.serve_recording,
+                 "serve the --record file at /recording (for the replay page; it shows every body's position, "
+                 "a map of the match): on the --metrics-port address while the match runs, on --http-port only "
+                 "once it is over; honours a single Range (default: off, /recording is a 404)");
     app.add_flag(
         "--agones", options.agones,
         "talk to the Agones SDK sidecar: ready, health pings, shutdown (default: on when AGONES_SDK_HTTP_PORT is set)");

@@ -1,6 +1,7 @@
 #pragma once
 // The ops flags of arena-server, so that its main adds them in one line and tests can parse
-// them: --metrics-port, --metrics-bind, --agones, --agones-port, --agones-shutdown-timeout.
+// them: --metrics-port, --metrics-bind, --serve-recording, --agones, --agones-port,
+// --agones-shutdown-timeout.
 #include <CLI/CLI.hpp>
 #include <string>
 

@@ -21,6 +21,7 @@ void ops_service::start_after_listening() {
         http_server_options http_options;
         http_options.bind = metrics_address();
         http_options.port = *options_.metrics_port;
+        if (options_.serve_recording) http_options.recording = options_.recording;
         http_ = std::make_unique<http_server>(io_, http_options,
                                               http_handlers{[this] { return metrics_text(); }, healthy_}, log_);
         http_->start();

@@ -22,6 +22,8 @@ struct ops_options {
     bool agones = false;                   // talk to the Agones SDK sidecar
     agones_options agones_sdk{};
     bool agones_port_given = false;  // --agones-port: AGONES_SDK_HTTP_PORT does not override it
+    bool serve_recording = false;    // --serve-recording: /recording on the metrics port
+    std::string recording;           // the --record file ("" when none)
 };
 
 class ops_service {

@@ -282,16 +282,22 @@ TEST_CASE("/recording serves the --record file as far as it is written, and is a
         CHECK(answer.find("HTTP/1.1 404") == 0);
         CHECK(answer.find("--record") != std::string::npos);
     }
-    http_server s({"--record", recording.string()});
+    // While the match runs, on the metrics port only, and only when asked for (http_port_tests.cpp).
+    http_server s({"--record", recording.string(), "--serve-recording", "--metrics-port", "0"});
+    const std::string marker = "metrics on http://";
+    REQUIRE(s.process.log_shows(marker));
+    const std::string log = s.process.log();
+    const auto metrics_port =
+        static_cast<uint16_t>(std::stoi(log.substr(log.find(':', log.find(marker) + marker.size()) + 1)));
     // The header is written when the recorder opens; the answer is the file's bytes then.
-    const std::string answer = raw_http(s.http_port, "GET /recording HTTP/1.1\r\nHost: x\r\n\r\n");
+    const std::string answer = raw_http(metrics_port, "GET /recording HTTP/1.1\r\nHost: x\r\n\r\n");
     CHECK(answer.find("HTTP/1.1 200") == 0);
     CHECK(answer.find("Content-Type: application/octet-stream") != std::string::npos);
     const size_t body = answer.find("\r\n\r\n");
     REQUIRE(body != std::string::npos);
     // Every recording starts with a length, a root offset and the identifier ARPL.
     CHECK(answer.substr(body + 4 + 8, 4) == "ARPL");
-    const std::string head = raw_http(s.http_port, "HEAD /recording HTTP/1.1\r\nHost: x\r\n\r\n");
+    const std::string head = raw_http(metrics_port, "HEAD /recording HTTP/1.1\r\nHost: x\r\n\r\n");
     CHECK(head.find("HTTP/1.1 200") == 0);
     CHECK(head.find("ARPL") == std::string::npos);
     std::filesystem::remove(recording);

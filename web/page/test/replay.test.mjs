@@ -3,7 +3,7 @@
 // (tests/data/golden_asteroids.arpl, from a file server of this test through ?src=) to its
 // end with every recorded hash verified and the final hash arena-replay computes natively,
 // scrubs back and forward to the same hash; plays the server's own --record file from
-// /recording while the server is still writing it; and opens a local file whose recorded hash
+// /recording on the metrics port (--serve-recording) while the server is still writing it; and opens a local file whose recorded hash
 // was changed, stopping at that tick with both hashes shown.
 //   ARENA_SERVER  arena-server     ARENA_REPLAY  arena-replay    ARENA_CHROMIUM  the browser
 //   ARENA_SOURCE_DIR  the repository (tests/data)   NODE_PATH  the page's node_modules
@@ -30,7 +30,9 @@ let browser;
 let files; // serves the golden recording to the page, from another origin
 let filesUrl;
 
-// An arena-server with --http-port; its page's URL.
+// An arena-server with --http-port; its page's URL. With --metrics-port among `extra`, the
+// metrics port's URL is in metricsUrls[page URL].
+const metricsUrls = {};
 async function startServer(extra) {
   const proc = spawn(server, ['--port', '0', '--http-port', '0', '--drain-grace', '0', ...extra], { stdio: ['ignore', 'pipe', 'pipe'] });
   servers.push(proc);
@@ -41,7 +43,12 @@ async function startServer(extra) {
   const port = await wait('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1]).catch((e) => {
     throw new Error(`${e.message}\n${out}\n${err}`);
   });
-  return `http://127.0.0.1:${port}/`;
+  const url = `http://127.0.0.1:${port}/`;
+  if (extra.includes('--metrics-port')) {
+    const metrics = await wait('the server\'s metrics port', () => err.match(/metrics on (http:\/\/[^/]+\/)metrics/)?.[1]);
+    metricsUrls[url] = metrics;
+  }
+  return url;
 }
 
 before(async () => {
@@ -136,16 +143,22 @@ test('the replay page plays the golden recording to its final hash, and a scrub 
   assert.deepEqual(problems, [], 'no errors in the page');
 });
 
-test('the replay page plays the server\'s own recording from /recording while it is being written', { timeout: 60000 }, async () => {
+test('the replay page plays the server\'s own recording from /recording on the metrics port while it is being written', { timeout: 60000 }, async () => {
   const bare = await startServer([]);
   const missing = await fetch(`${bare}recording`);
   assert.equal(missing.status, 404, 'no --record, no /recording');
   assert.match(await missing.text(), /--record/);
 
-  const url = await startServer(['--record', join(dir, 'live.arpl'), '--tick-rate', '60', '--hash-interval', '10']);
+  const recordingFlags = ['--record', join(dir, 'live.arpl'), '--tick-rate', '60', '--hash-interval', '10'];
+  const unserved = await startServer(recordingFlags);
+  assert.equal((await fetch(`${unserved}recording`)).status, 404, 'without --serve-recording, no /recording');
+  // While the match runs, the recording (a map of every body) is served on the metrics port only.
+  const url = await startServer([...recordingFlags, '--serve-recording', '--metrics-port', '0']);
+  assert.equal((await fetch(`${url}recording`)).status, 404, 'not on the public port while the match runs');
+  const recording = `${metricsUrls[url]}recording`;
   // The recorder flushes once a second (every 60 ticks here): the file grows twice, so it holds
   // at least one whole second of ticks after its header.
-  const size = async () => (await (await fetch(`${url}recording`)).arrayBuffer()).byteLength;
+  const size = async () => (await (await fetch(recording)).arrayBuffer()).byteLength;
   let last = await size();
   for (let grown = 0; grown < 2; ++grown) {
     const before = last;
@@ -154,7 +167,7 @@ test('the replay page plays the server\'s own recording from /recording while it
       return now > before ? now : 0;
     });
   }
-  const { page, problems } = await openReplay(`${url}replay?src=/recording`);
+  const { page, problems } = await openReplay(`${url}replay?src=${encodeURIComponent(recording)}`);
   const opened = await figures(page);
   assert.equal(opened.error, '');
   assert.match(opened.cutShort, /\S/, 'a recording still being written has no End yet');
