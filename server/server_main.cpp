@@ -10,6 +10,7 @@
 #include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
+#include "server/config/world_choice.hpp"
 #include "server/net/log.hpp"
 #include "server/net/server.hpp"
 #include "server/net/udp_transport.hpp"
@@ -60,12 +61,14 @@ int main(int argc, char** argv) {
     app.add_option("--max-spectators", options.match.max_spectators,
                    "spectators at once, besides the players (default 16; 0: none)")
         ->check(CLI::Range(0, 100000));
-    app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
+    app.add_option("--preset", preset,
+                   "world preset: asteroids (default; plays the asteroids rules) or platformer (a sandbox)");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
     std::string rules_name;
-    app.add_option("--rules", rules_name,
-                   "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
-                   "overrides the config file's (default: the config's, else sandbox)");
+    app.add_option(
+        "--rules", rules_name,
+        "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
+        "overrides the preset's or the config file's (default: the preset's; a config's \"rules\", else sandbox)");
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
     app.add_option("--record", record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s,
@@ -149,31 +152,13 @@ int main(int argc, char** argv) {
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
     options.idle_timeout_ns = static_cast<int64_t>(idle_s * 1e9);
 
-    world::world_config world_config;
-    if (!config_file.empty()) {
-        auto loaded = config::load_config_file(config_file);
-        if (auto* e = std::get_if<config::config_error>(&loaded)) {
-            std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
-            return 2;
-        }
-        world_config = std::get<world::world_config>(loaded);
-        options.match.preset = "";
-    } else if (auto p = world::preset_by_name(preset)) {
-        world_config = *p;
-        options.match.preset = preset;
-    } else {
-        std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
+    auto chosen = config::choose_world(preset, config_file, rules_name);  // server/config/world_choice.hpp
+    if (auto* e = std::get_if<config::config_error>(&chosen)) {
+        std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
         return 2;
     }
-    if (!rules_name.empty()) {
-        const auto rules = config::rules_by_name(rules_name);
-        if (!rules) {
-            std::fprintf(stderr, "arena-server: --rules: unknown rules '%s' (%s)\n", rules_name.c_str(),
-                         config::rules_names_list().c_str());
-            return 2;
-        }
-        world_config.rules = *rules;
-    }
+    const world::world_config world_config = std::get<config::world_choice>(chosen).config;
+    options.match.preset = std::get<config::world_choice>(chosen).preset;
 
     try {
         boost::asio::io_context io(1);
