@@ -376,6 +376,10 @@ void match::tick() {
     tick_record record;
     record.tick = world_.tick();
     record.joins = pending_joins_;
+    for (const world::player_id id : record.joins) {
+        const auto joining = players_.find(id);
+        record.join_names.push_back(joining == players_.end() ? std::string() : joining->second.name);
+    }
     record.leaves = pending_leaves_;
     pending_joins_.clear();
     pending_leaves_.clear();
