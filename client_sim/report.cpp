@@ -130,6 +130,8 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
         r.own_shot_exact_share = static_cast<double>(m.own_shots.exact) / static_cast<double>(matched);
     r.figures = {
         {"rtt_ms", m.rtt_ms.summarize()},
+        {"network_rtt_ms", m.network_rtt_ms.summarize()},
+        {"server_hold_ms", m.server_hold_ms.summarize()},
         {"snapshot_gap_ms", m.snapshot_gap_ms.summarize()},
         {"snapshots_per_s_per_bot", m.snapshots_per_s_per_bot.summarize()},
         {"prediction_error_m", m.prediction_error_m.summarize()},
