@@ -185,10 +185,14 @@ std::string summary_table(const final_report& r) {
     const summary* shot_error = nullptr;
     for (const auto& [name, s] : r.figures)
         if (name == "own_shot_error_m") shot_error = &s;
-    // A ship's position reaches the client rounded to 1/256 m, off by up to 1/512 m on each
-    // axis: a shot predicted from it is off by up to that much (2.8 mm), and is bit-exact only
-    // by chance. Within that, a shot's error is the snapshots' quantisation, not a fault.
-    const double quantum_m = std::sqrt(2.0) / (2.0 * protocol::delta::position_scale);
+    // A ship reaches the client rounded: its position to 1/256 m (off by up to 1/512 m on each
+    // axis), its velocity to 1/32 m/s (1/64 m/s), which the prediction carries from the
+    // snapshot to the shot: about 0.1 s (a snapshot interval of 3 ticks and the client's lead
+    // of a few). So a predicted shot is off by up to √2·(1/512 + 0.1/64) m ≈ 5.0 mm, and
+    // bit-exact only by chance: within that, its error is the quantisation, not a fault.
+    constexpr double prediction_s = 0.1;
+    const double quantum_m =
+        std::sqrt(2.0) * (0.5 / protocol::delta::position_scale + prediction_s * 0.5 / protocol::delta::velocity_scale);
     const double p99_m = shot_error != nullptr ? shot_error->p99 : 0.0;
     out += format(
         "own shots: %llu matched the server's, error p99 %.1f mm: %s the delta snapshots' quantisation (%.1f mm; "

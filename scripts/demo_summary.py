@@ -6,9 +6,10 @@ import argparse
 import json
 import math
 
-# The delta snapshots' quantisation (protocol/delta/quantize.hpp) as a distance: a position is
-# rounded to 1/256 m, off by up to 1/512 m on each axis.
-POSITION_QUANTUM_M = math.sqrt(2) / 512
+# The delta snapshots' quantisation (protocol/delta/quantize.hpp) as a distance, as arena-bots
+# reckons it (client_sim/report.cpp): a position is rounded to 1/256 m (1/512 m off on each
+# axis), a velocity to 1/32 m/s (1/64 m/s), carried over about 0.1 s of prediction.
+QUANTUM_M = math.sqrt(2) * (1 / 512 + 0.1 / 64)
 
 
 def mm(metres):
@@ -87,9 +88,9 @@ def main():
     matched = own.get("exact", 0) + own.get("with_error", 0)
     if matched:
         p99, top = fig("own_shot_error_m", "p99"), fig("own_shot_error_m", "max")
-        where = ("within" if p99 <= POSITION_QUANTUM_M else "beyond")
+        where = ("within" if p99 <= QUANTUM_M else "beyond")
         print(f"own shots: {matched} fired where the server fired them, off by {mm(p99)} (p99, max {mm(top)}): "
-              f"{where} the delta snapshots' quantisation ({mm(POSITION_QUANTUM_M)}: positions are sent to 1/256 m)")
+              f"{where} the delta snapshots' quantisation ({mm(QUANTUM_M)}: positions to 1/256 m, velocities to 1/32 m/s)")
     tick = stats.get("tick_ms", {})
     period = 1000.0 / rate if rate else 0
     print(f"server: {stats.get('ticks', 0)} ticks, a tick took {tick.get('p99', 0):.2f} ms (p99) of its "
