@@ -48,7 +48,7 @@ def comparable(lines):
 
 def main():
     p = argparse.ArgumentParser()
-    for name in ("bots", "stats", "replay", "replay-scoreboard", "server-log", "page", "dir"):
+    for name in ("bots", "stats", "replay", "replay-scoreboard", "replay-code", "page", "dir"):
         p.add_argument("--" + name, default="")
     a = p.parse_args()
     bots = read_json(a.bots, {})
@@ -98,12 +98,13 @@ def main():
           f"{stats.get('bytes_in_per_s', 0) / 1000:.0f} kB/s received")
     live = stats.get("scoreboard", [])
     same = comparable(replayed) == comparable(live)
-    if replay.get("hashes_checked"):
+    if a.replay_code == "0" and replay.get("hashes_checked"):
         print(f"replay: {replay.get('ticks_replayed', 0)} ticks re-simulated, {replay['hashes_checked']} recorded "
               f"hashes matched; " + ("its scoreboard is the live one, names included" if same else
                                      "its scoreboard differs from the live one"))
     else:
-        print("replay: the recording did not replay (see " + a.dir + "/replay.txt)")
+        print(f"replay: the recording did not replay bit for bit (arena-replay exited with {a.replay_code}: see "
+              f"{a.dir}/replay.txt)")
 
     ranked = sorted(live, key=lambda l: (-l.get("score", 0), l.get("player", 0)))
     print(f"== top five of {len(live)} ==")

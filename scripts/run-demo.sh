@@ -80,11 +80,12 @@ wait "$fleet" || bots_code=$?
 fleet=""
 wait "$server" || true
 server=""
-"$bin/arena-replay" "$recording" > "$dir/replay.txt" 2>&1 || true
+replay_code=0
+"$bin/arena-replay" "$recording" > "$dir/replay.txt" 2>&1 || replay_code=$?
 "$bin/arena-replay" "$recording" --scoreboard > "$dir/replay_scoreboard.json" 2> /dev/null || true
 
 python3 "$here/demo_summary.py" --bots "$bots_json" --stats "$stats" --replay "$dir/replay.txt" \
-  --replay-scoreboard "$dir/replay_scoreboard.json" --server-log "$server_log" --page "$page" --dir "$dir"
+  --replay-scoreboard "$dir/replay_scoreboard.json" --replay-code "$replay_code" --page "$page" --dir "$dir"
 [ "$bots_code" = 0 ] || echo "arena-bots exited with $bots_code: see $bots_text"
 
 echo "== the lecture's example: 10 N on 1 kg, dt = 1 s, explicit Euler (exact: 500 m) =="
