@@ -25,7 +25,7 @@ run_arena() {
   local n=$1 label=$2
   local -a server_flags=(${3:-}) bots_flags=(${4:-})
   "${pin_server[@]}" "$bin/arena-server" --port 0 --max-players "$n" --max-connections $((2 * n + 16)) \
-    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 "${server_flags[@]}" \
+    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 --rules sandbox "${server_flags[@]}" \
     --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   for _ in $(seq 100); do

@@ -48,7 +48,7 @@ i=0
 for bin in "$@"; do
   i=$((i + 1))
   "${pin_server[@]}" "$bin/arena-server" --port 0 --http-port 0 --max-players "$clients" \
-    --max-connections $((2 * clients + 16)) --max-pending-handshakes "$clients" --view-radius 0 \
+    --max-connections $((2 * clients + 16)) --max-pending-handshakes "$clients" --view-radius 0 --rules sandbox \
     --stats-json "$work/s$i.json" > "$work/s$i.out" 2> "$work/s$i.log" &
   server=$!
   port=$(port_of "$work/s$i.out" "listening on")

@@ -79,7 +79,7 @@ run() {
   connect "$permille" "$latency" "$label"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
-    --max-players "$bots" --duration $((seconds + 30)) "${copies[@]}" --stats-json "$work/$label.stats.json" \
+    --max-players "$bots" --duration $((seconds + 30)) --rules sandbox "${copies[@]}" --stats-json "$work/$label.stats.json" \
     > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port=""
   local prefix="listening on"; [ "$transport" = udp ] && prefix="udp listening on"

@@ -78,7 +78,11 @@ struct fleet_metrics {
     sample_set interval_prediction_error_m;
 
     // Whole run, well-behaved bots only (a misbehaving bot's figures measure its fault).
-    sample_set rtt_ms;                   // Ping → Pong, ms
+    sample_set rtt_ms;  // Ping → Pong, ms
+    // The same round trip split in two, where the Pong says how long the server held the Ping
+    // (TCP: until its next tick's read): that hold, and the rest, the network's round trip.
+    sample_set server_hold_ms;           // ms
+    sample_set network_rtt_ms;           // ms: rtt_ms − server_hold_ms
     sample_set snapshot_gap_ms;          // between two snapshots of one bot, ms
     sample_set prediction_error_m;       // see prediction.hpp
     sample_set input_lag_ticks;          // inputs sent but not yet consumed, at each snapshot

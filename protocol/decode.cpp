@@ -113,7 +113,9 @@ result<ping_msg> decode_ping(const Message& message) {
 result<pong_msg> decode_pong(const Message& message) {
     const auto* t = message.payload_as<Pong>();
     if (t == nullptr) return result<pong_msg>::failure(unexpected(message, Payload::Pong));
-    return result<pong_msg>::success({t->client_time(), t->server_tick()});
+    pong_msg pong{t->client_time(), t->server_tick()};
+    if (const auto hold = t->server_hold_us(); hold.has_value()) pong.server_hold_us = *hold;
+    return result<pong_msg>::success(pong);
 }
 
 result<bye_msg> decode_bye(const Message& message) {

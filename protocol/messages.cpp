@@ -90,9 +90,14 @@ frame_bytes encode_ping(std::uint64_t client_time) {
     return to_frame(fbb);
 }
 
-frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick) {
+frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick,
+                        std::optional<std::uint32_t> server_hold_us) {
     flatbuffers::FlatBufferBuilder fbb(small_message_bytes);
-    finish_message(fbb, Payload::Pong, CreatePong(fbb, client_time, server_tick).Union());
+    PongBuilder b(fbb);
+    b.add_client_time(client_time);
+    b.add_server_tick(server_tick);
+    if (server_hold_us) b.add_server_hold_us(*server_hold_us);  // absent: not measured
+    finish_message(fbb, Payload::Pong, b.Finish().Union());
     return to_frame(fbb);
 }
 

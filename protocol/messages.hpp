@@ -3,6 +3,7 @@
 // (4-byte length prefix + FlatBuffer with identifier "ARNA") ready to write to a socket.
 // Snapshots, the hot path, have their own builders in snapshot.hpp.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -75,6 +76,7 @@ struct ping_msg {
 struct pong_msg {
     std::uint64_t client_time = 0;
     std::uint32_t server_tick = 0;
+    std::optional<std::uint32_t> server_hold_us{};  // µs the Ping waited at the server; none: not measured
     bool operator==(const pong_msg&) const = default;
 };
 
@@ -95,7 +97,8 @@ inline constexpr std::uint8_t button_impulse = 1u << 0;
 // The Input table of `input` in a builder (encode_input, and a client's reused builder).
 flatbuffers::Offset<Input> create_input(flatbuffers::FlatBufferBuilder& fbb, const input_msg& input);
 [[nodiscard]] frame_bytes encode_ping(std::uint64_t client_time);
-[[nodiscard]] frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick);
+[[nodiscard]] frame_bytes encode_pong(std::uint64_t client_time, std::uint32_t server_tick,
+                                      std::optional<std::uint32_t> server_hold_us = std::nullopt);
 // `result` (optional): the match is over (README.md, "Players and game events").
 [[nodiscard]] frame_bytes encode_bye(std::string_view reason, const match_result* result = nullptr);
 

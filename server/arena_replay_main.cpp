@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     app.add_flag("--state", state, "print every body where the replay stops (see --until), as CSV");
     app.add_flag("--scoreboard", scoreboard,
                  "print the game's scoreboard where the replay stops, as JSON (what --stats-json's scoreboard holds, "
-                 "without names: recordings hold player ids)");
+                 "names included; recordings made before names were recorded give \"\")");
     if (int code = cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
 
     auto opened = replay::replayer::open(path);
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     if (state) print_state(rp.state());
     if (scoreboard) {
         const std::vector<rules::score_line> lines = rp.game_rules().scoreboard();
-        std::printf("%s\n", config::scoreboard_json(lines).c_str());
+        std::printf("%s\n", config::scoreboard_json(lines, rp.scoreboard_names(lines)).c_str());
     }
     // stdout is data when --dump-hashes, --state or --scoreboard asked for some; the summary then goes to stderr.
     print_summary(dump_hashes || state || scoreboard ? stderr : stdout, rp.file_header(), report, seconds);

@@ -7,6 +7,7 @@
 #include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
+#include "server/config/world_choice.hpp"
 #include "server/net/static_files.hpp"
 #include "server/ops/ops_flags.hpp"
 #include "server/world/presets.hpp"
@@ -17,34 +18,16 @@ namespace {
 
 // The world the match plays in: --config's file, else --preset's; --rules over either's rules.
 // False: refused, said on stderr.
+// The world and the game, from --preset, --config and --rules (server/config/world_choice.hpp).
 bool choose_world(const std::string& preset, const std::string& config_file, const std::string& rules_name,
                   server_setup& out) {
-    world::world_config& world_config = out.world;
-    host::host_options& options = out.host;
-    if (!config_file.empty()) {
-        auto loaded = config::load_config_file(config_file);
-        if (auto* e = std::get_if<config::config_error>(&loaded)) {
-            std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
-            return false;
-        }
-        world_config = std::get<world::world_config>(loaded);
-        options.match.preset = "";
-    } else if (auto p = world::preset_by_name(preset)) {
-        world_config = *p;
-        options.match.preset = preset;
-    } else {
-        std::fprintf(stderr, "arena-server: --preset: unknown preset '%s' (asteroids, platformer)\n", preset.c_str());
+    auto chosen = config::choose_world(preset, config_file, rules_name);
+    if (auto* e = std::get_if<config::config_error>(&chosen)) {
+        std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
         return false;
     }
-    if (!rules_name.empty()) {
-        const auto rules = config::rules_by_name(rules_name);
-        if (!rules) {
-            std::fprintf(stderr, "arena-server: --rules: unknown rules '%s' (%s)\n", rules_name.c_str(),
-                         config::rules_names_list().c_str());
-            return false;
-        }
-        world_config.rules = *rules;
-    }
+    out.world = std::get<config::world_choice>(chosen).config;
+    out.host.match.preset = std::get<config::world_choice>(chosen).preset;
     return true;
 }
 
@@ -93,12 +76,14 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     app.add_option("--max-spectators", options.match.max_spectators,
                    "spectators at once, besides the players (default 16; 0: none)")
         ->check(CLI::Range(0, 100000));
-    app.add_option("--preset", preset, "world preset: asteroids (default) or platformer");
+    app.add_option("--preset", preset,
+                   "world preset: asteroids (default; plays the asteroids rules) or platformer (a sandbox)");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
     std::string rules_name;
     app.add_option("--rules", rules_name,
                    "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
-                   "overrides the config file's (default: the config's, else sandbox)");
+                   "overrides the preset's or the config file's (default: the preset's; a config's \"rules\", else "
+                   "sandbox)");
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
     app.add_option("--record", out.record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s,

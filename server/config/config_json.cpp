@@ -337,6 +337,15 @@ void check_ranges(const world::world_config& c) {
     if (c.max_bodies > max_world_bodies)
         throw bad_field{"field 'max_bodies' must be at most " + std::to_string(max_world_bodies) + ", got " +
                         std::to_string(c.max_bodies)};
+    // Spawn counts: what a config asks the world to create at once. 30 million rocks used to be
+    // accepted and spent minutes placing a million of them (a replay's header too) before any
+    // check; a count beyond what max_bodies may ever be is refused here, before any work.
+    if (c.rocks.count > max_world_bodies)
+        throw bad_field{"field 'rocks.count' must be at most " + std::to_string(max_world_bodies) + ", got " +
+                        std::to_string(c.rocks.count)};
+    if (c.bodies.size() > max_world_bodies)
+        throw bad_field{"field 'bodies' must hold at most " + std::to_string(max_world_bodies) + " bodies, got " +
+                        std::to_string(c.bodies.size())};
     r.material("player", c.player);
     r.field("control.thrust_force", c.control.thrust_force, 0, 1e7, "N");
     r.field("control.turn_torque", c.control.turn_torque, 0, 1e7, "N·m");

@@ -11,7 +11,7 @@
 namespace arena::config {
 
 // `names[k]` is the name of `lines[k]`'s player; missing names are written as "" (a recording
-// holds player ids, not names).
+// made before names were recorded holds player ids alone).
 std::string scoreboard_json(std::span<const rules::score_line> lines, std::span<const std::string> names = {});
 
 }  // namespace arena::config

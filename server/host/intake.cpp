@@ -6,7 +6,8 @@ namespace arena::host {
 
 intake::intake(match_registry& matches, ops::process_counters& counters) : matches_(matches), counters_(counters) {}
 
-intake_result intake::take(match::connection& from, std::span<const uint8_t> frame, std::optional<int64_t> arrival_ns) {
+intake_result intake::take(match::connection& from, std::span<const uint8_t> frame, std::optional<int64_t> arrival_ns,
+                           int64_t held_ns) {
     match::match& game = matches_.match_of(from);
     // Verified before a field is read: bytes from a peer never reach the match unchecked.
     auto verified = protocol::verify_message(frame, protocol::client_frame_limits);
@@ -16,7 +17,7 @@ intake_result intake::take(match::connection& from, std::span<const uint8_t> fra
     }
     ++counters_.messages_in;
     const protocol::Message& message = *verified.value;
-    const bool go_on = arrival_ns ? game.receive(from, message, *arrival_ns) : game.receive(from, message);
+    const bool go_on = arrival_ns ? game.receive(from, message, *arrival_ns, held_ns) : game.receive(from, message);
     return {go_on, &message};
 }
 

@@ -33,7 +33,10 @@ public:
     // One whole frame from `from` (8-byte aligned, as protocol::frame_reader keeps it) that
     // arrived at `arrival_ns` (the transport's steady clock, ns); nullopt: at the match's current
     // tick time (a transport without a clock: the simulated network).
-    intake_result take(match::connection& from, std::span<const uint8_t> frame, std::optional<int64_t> arrival_ns);
+    // `held_ns`: how long the bytes waited in the kernel before they were read (-1: unknown),
+    // which a Pong reports.
+    intake_result take(match::connection& from, std::span<const uint8_t> frame, std::optional<int64_t> arrival_ns,
+                       int64_t held_ns = -1);
     // Bytes from `from` that its frame reader could not frame (reader.failed()).
     void refuse_unreadable(match::connection& from, const protocol::frame_reader& reader);
     // A refusal a transport finds in its own framing: a datagram or a WebSocket message that is

@@ -120,7 +120,7 @@ bool match::receive(connection& c, const protocol::Message& message) {
     return receive(c, message, static_cast<int64_t>(world_.tick()) * tick_ns);
 }
 
-bool match::receive(connection& c, const protocol::Message& message, int64_t arrival_ns) {
+bool match::receive(connection& c, const protocol::Message& message, int64_t arrival_ns, int64_t held_ns) {
     auto it = clients_.find(&c);
     if (it == clients_.end()) return false;  // bytes that were on their way when it was closed
     client& cl = it->second;
@@ -136,7 +136,12 @@ bool match::receive(connection& c, const protocol::Message& message, int64_t arr
             reject(c, *no);
             return false;
         }
-        c.send(protocol::encode_pong(m->client_time, world_.tick()));
+        // µs, at most an hour's worth (a clock step must not wrap the field).
+        const std::optional<uint32_t> held_us =
+            held_ns < 0
+                ? std::nullopt
+                : std::optional<uint32_t>(static_cast<uint32_t>(std::min<int64_t>(held_ns / 1000, 3'600'000'000)));
+        c.send(protocol::encode_pong(m->client_time, world_.tick(), held_us));
         return true;
     }
     forget(it, close_cause{close_cause::kind::client_bye, {}, std::get<bye_message>(admitted).reason});
@@ -376,6 +381,10 @@ void match::tick() {
     tick_record record;
     record.tick = world_.tick();
     record.joins = pending_joins_;
+    for (const world::player_id id : record.joins) {
+        const auto joining = players_.find(id);
+        record.join_names.push_back(joining == players_.end() ? std::string() : joining->second.name);
+    }
     record.leaves = pending_leaves_;
     pending_joins_.clear();
     pending_leaves_.clear();

@@ -95,7 +95,11 @@ public:
     // in nanoseconds: rates are measured in real time, so that a stall of the server does not
     // look like a flood). False: the connection is over and should close once its output is
     // flushed (a refusal was sent, or the client said Bye).
-    [[nodiscard]] bool receive(connection& c, const protocol::Message& message, int64_t arrival_ns);
+    // `held_ns` (≥ 0, or -1: not measured): how long the bytes waited before the transport read
+    // them (TCP: since the kernel received them); a Pong tells the client, so that it can tell
+    // the network's round trip from the server's wait for its next read.
+    [[nodiscard]] bool receive(connection& c, const protocol::Message& message, int64_t arrival_ns,
+                               int64_t held_ns = -1);
     // The same, for a transport without a clock (tests, simulations): the message arrived at
     // the current tick's time, tick × the tick period.
     [[nodiscard]] bool receive(connection& c, const protocol::Message& message);

@@ -3,6 +3,7 @@
 // the input each player's body consumed. The match applies ticks through apply_tick, and a
 // replay applies the recorded ticks through the same function, so the two cannot drift apart.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "server/rules/rules.hpp"
@@ -16,6 +17,9 @@ struct tick_record {
     std::vector<world::player_id> joins;  // owners, spawned in this order
     std::vector<world::body_id> leaves;   // bodies removed, in this order
     world::tick_inputs inputs;            // one per player body that consumed an input
+    // The name of each join, in the order of `joins` (for the recording: a replayed scoreboard
+    // names its players); empty from a recording that holds no names. The world ignores it.
+    std::vector<std::string> join_names;
 };
 
 // Joins (world::spawn_player), then leaves (world::remove_body), then one step with the inputs.

@@ -1,10 +1,14 @@
 #include "server/net/session.hpp"
 
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstring>
+#include <ctime>
 #include <system_error>
 
 #include "server/host/log.hpp"
@@ -51,7 +55,42 @@ void session::start() {
     // server, which reads only at ticks anyway. Every call below passes MSG_DONTWAIT.
     fd_ = accepted_.release(ec);
     if (ec) fd_ = -1;  // read_available reports the socket as failed
+    // The kernel's receive time of the bytes each recv returns: a Ping waits here until the
+    // tick's read, and its Pong tells the client how long (recv_timed).
+    const int on = 1;
+    if (fd_ >= 0) (void)::setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
 }
+
+namespace {
+
+// recv with the kernel's receive time (SO_TIMESTAMPNS, CLOCK_REALTIME) of the newest bytes it
+// returned: how long they waited before this read, in ns; -1 when the kernel gave no time.
+// Older bytes read with them waited longer, so for a Ping read beside later inputs this is a
+// lower bound of its wait.
+ssize_t recv_timed(int fd, std::span<uint8_t> buffer, int64_t& held_ns) {
+    iovec io{buffer.data(), buffer.size()};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+    msghdr msg{};
+    msg.msg_iov = &io;
+    msg.msg_iovlen = 1;
+    msg.msg_control = control;
+    msg.msg_controllen = sizeof control;
+    const ssize_t n = ::recvmsg(fd, &msg, MSG_DONTWAIT);
+    held_ns = -1;
+    if (n <= 0) return n;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
+        if (c->cmsg_level != SOL_SOCKET || c->cmsg_type != SCM_TIMESTAMPNS) continue;
+        timespec arrived{}, now{};
+        std::memcpy(&arrived, CMSG_DATA(c), sizeof arrived);
+        ::clock_gettime(CLOCK_REALTIME, &now);
+        const int64_t waited = (static_cast<int64_t>(now.tv_sec) - arrived.tv_sec) * 1'000'000'000 +
+                               (static_cast<int64_t>(now.tv_nsec) - arrived.tv_nsec);
+        held_ns = std::max<int64_t>(waited, 0);  // a wall clock stepped back: no wait
+    }
+    return n;
+}
+
+}  // namespace
 
 void session::read_available(std::span<uint8_t> buffer) {
     // What is there, without waiting: the server calls this once per tick for every session,
@@ -60,7 +99,8 @@ void session::read_available(std::span<uint8_t> buffer) {
     // and a wake-up per input; the match consumes inputs only at ticks anyway.
     while (!closing_) {
         if (fd_ < 0) errno = EBADF;  // start() could not take the descriptor from Asio
-        const ssize_t n = fd_ < 0 ? -1 : ::recv(fd_, buffer.data(), buffer.size(), MSG_DONTWAIT);
+        int64_t held_ns = -1;
+        const ssize_t n = fd_ < 0 ? -1 : recv_timed(fd_, buffer, held_ns);
         if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return;
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) {
@@ -75,12 +115,12 @@ void session::read_available(std::span<uint8_t> buffer) {
         const auto got = static_cast<size_t>(n);
         owner_.host().intake().count_bytes(got);
         // Rates are measured in real time: after a stall of the server, what queued is read at once.
-        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.host().now_ns())) return;
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.host().now_ns(), held_ns)) return;
         if (got < buffer.size()) return;  // the socket is drained: the next recv would find nothing
     }
 }
 
-bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
+bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns, int64_t held_ns) {
     host::intake& intake = owner_.host().intake();
     while (!closing_) {
         data = data.subspan(reader_.feed(data));
@@ -89,7 +129,7 @@ bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns) {
             return false;
         }
         if (!reader_.has_frame()) return true;  // the rest of the frame is still on its way
-        const bool go_on = intake.take(*this, reader_.frame(), arrival_ns).go_on;
+        const bool go_on = intake.take(*this, reader_.frame(), arrival_ns, held_ns).go_on;
         reader_.next();
         if (!go_on) {
             close_after({});  // a Bye from the client; after a refusal this changes nothing

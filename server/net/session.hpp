@@ -60,7 +60,8 @@ private:
     // The match this session belongs to (the host's registry says which).
     match::match& game();
     // Frames `data` and hands each frame to the intake; false: stop reading.
-    bool take_frames(std::span<const uint8_t> data, int64_t arrival_ns);
+    // `held_ns`: how long the bytes waited in the kernel before this read (-1: unknown).
+    bool take_frames(std::span<const uint8_t> data, int64_t arrival_ns, int64_t held_ns = -1);
     // Asks the server for a flush of this session, unless one is asked for or a write waits.
     void request_flush();
     // Writes batches until the output is drained, the socket is full (then waits for room) or

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "protocol/player_name.hpp"
 #include "protocol/replay_generated.h"
 #include "server/replay/status.hpp"
 #include "server/world/fnv1a.hpp"
@@ -43,6 +44,21 @@ protocol::result<record> decode_tick(const fb::Tick& t) {
     out.tick = t.tick();
     if (const auto* joins = t.joins())
         for (const uint32_t id : *joins) out.joins.emplace_back(id);
+    if (const auto* names = t.join_names()) {
+        // One name per join, each one a Hello could carry: a file's bytes reach the scoreboard.
+        if (names->size() != out.joins.size())
+            return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": " +
+                                                     std::to_string(names->size()) + " join names for " +
+                                                     std::to_string(out.joins.size()) + " joins");
+        out.join_names.reserve(names->size());
+        for (const flatbuffers::String* name : *names) {
+            std::string text = string_or_empty(name);
+            if (auto problem = protocol::player_name_problem(text, protocol::max_player_name_bytes))
+                return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": join name " +
+                                                         std::to_string(out.join_names.size()) + ": " + *problem);
+            out.join_names.push_back(std::move(text));
+        }
+    }
     if (const auto* leaves = t.leaves())
         for (const uint32_t id : *leaves) out.leaves.emplace_back(id);
     if (const auto* inputs = t.inputs()) {
@@ -107,6 +123,8 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
         return out;
     };
     if (!t.joins.empty()) joins = builder_.CreateVector(numbers(t.joins));
+    flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> names;
+    if (!t.joins.empty() && t.join_names.size() == t.joins.size()) names = builder_.CreateVectorOfStrings(t.join_names);
     if (!t.leaves.empty()) leaves = builder_.CreateVector(numbers(t.leaves));
     if (!t.inputs.empty()) {
         fb::TickInput* slots = nullptr;
@@ -121,6 +139,7 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
     if (!joins.IsNull()) b.add_joins(joins);
     if (!leaves.IsNull()) b.add_leaves(leaves);
     if (!inputs.IsNull()) b.add_inputs(inputs);
+    if (!names.IsNull()) b.add_join_names(names);
     const auto content = b.Finish();
     fb::FinishSizePrefixedRecordBuffer(builder_, fb::CreateRecord(builder_, fb::Content::Tick, content.Union()));
     finish_into(out);

@@ -93,6 +93,8 @@ replay_report replayer::run(const replay_options& options) {
                 break;
             }
             match::apply_tick(world_, *rules_, *t);
+            for (size_t k = 0; k < t->join_names.size() && k < t->joins.size(); ++k)
+                names_[t->joins[k].value()] = t->join_names[k];
             ++report.ticks_replayed;
             if (options.on_tick) options.on_tick(world_.tick(), rules::state_hash(world_, *rules_));
         } else if (auto* c = std::get_if<hash_check>(&next.value)) {
@@ -106,6 +108,16 @@ replay_report replayer::run(const replay_options& options) {
     }
     report.complete = true;
     return finish(report);
+}
+
+std::vector<std::string> replayer::scoreboard_names(std::span<const rules::score_line> lines) const {
+    std::vector<std::string> out;
+    out.reserve(lines.size());
+    for (const rules::score_line& line : lines) {
+        const auto it = names_.find(line.player);
+        out.push_back(it == names_.end() ? std::string() : it->second);
+    }
+    return out;
 }
 
 }  // namespace arena::replay

@@ -6,9 +6,12 @@
 // (a player steps a recording a few ticks at a time).
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "protocol/result.hpp"
 #include "server/replay/reader.hpp"
@@ -56,6 +59,9 @@ public:
     const header& file_header() const { return reader_.file_header(); }
     const world::world& state() const { return world_; }
     const rules::rules& game_rules() const { return *rules_; }
+    // The name each of `lines`' players joined with, as the match's scoreboard names them ("" for
+    // a player of a recording made before names were recorded).
+    std::vector<std::string> scoreboard_names(std::span<const rules::score_line> lines) const;
 
 private:
     replayer(reader r, const world::world_config& config, uint64_t seed);
@@ -68,6 +74,7 @@ private:
     bool ended_ = false;                         // the End record is read and checked
     std::optional<hash_mismatch> failed_hash_;   // the mismatch that stopped a run
     std::string failed_file_;                    // the file problem that stopped a run
+    std::map<uint32_t, std::string> names_;      // player id -> the name it joined with
 };
 
 }  // namespace arena::replay

@@ -173,6 +173,22 @@ TEST_CASE("the round trip is measured on the time the core is given", "[client_c
     CHECK(c.shared.metrics().rtt_ms.size() == 1);
 }
 
+TEST_CASE("a Pong that says how long the server held the Ping splits the round trip", "[client_core]") {
+    // 17 ms on loopback was the server's wait for its next tick's read, not the network's.
+    joined_core c;
+    c.snapshot(101, 0, 15 * ms);
+    c.core.on_frame(protocol::encode_pong(1000 * ms, 150, 16'500), 1017 * ms);
+    const auto& m = c.shared.metrics();
+    REQUIRE(m.server_hold_ms.size() == 1);
+    CHECK(c.shared.metrics().server_hold_ms.summarize().max == Approx(16.5));
+    CHECK(c.shared.metrics().network_rtt_ms.summarize().max == Approx(0.5));
+    CHECK(c.shared.metrics().rtt_ms.summarize().max == Approx(17.0));
+    // A Pong without it (WebSocket, UDP, an older server): the round trip alone.
+    c.core.on_frame(protocol::encode_pong(1100 * ms, 151), 1117 * ms);
+    CHECK(m.rtt_ms.size() == 2);
+    CHECK(m.server_hold_ms.size() == 1);
+}
+
 TEST_CASE("an ack_sequence that goes back ends the session", "[client_core]") {
     joined_core c;
     for (std::uint64_t tick = 1; tick <= 10; ++tick) c.core.on_tick(tick, tick * 16 * ms);

@@ -92,6 +92,15 @@ TEST_CASE("max_bodies limits the rocks a config spawns", "[config][limits]") {
     CHECK(w.bodies().size() == 10);
 }
 
+TEST_CASE("a spawn count beyond what max_bodies may be is refused at load, naming the field", "[config][limits]") {
+    // 30 million rocks were accepted, and the world then placed a million of them (minutes).
+    CHECK(error_of(R"({"preset": "asteroids", "rocks": {"count": 30000000}})") ==
+          "field 'rocks.count' must be at most 1048576, got 30000000");
+    CHECK(error_of(R"({"rocks": {"count": 1048577}})") == "field 'rocks.count' must be at most 1048576, got 1048577");
+    // The limit itself is a valid count (max_bodies then stops the spawning, as above).
+    CHECK(parsed(R"({"rocks": {"count": 1048576}, "max_bodies": 10})").rocks.count == 1048576);
+}
+
 TEST_CASE("each field at either end of its interval leaves a preset's world finite", "[config][limits]") {
     // One field at a time, from each preset, with players at full thrust, turn and impulse.
     // (Every field at its extreme at once can still diverge: a 1 g, 1 mm body under 1e7 N·m

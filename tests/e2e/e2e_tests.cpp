@@ -39,9 +39,10 @@ struct server {
         process.wait_for(3s);
     }
     static std::vector<std::string> args(const std::vector<std::string>& extra) {
+        // The sandbox's rules, which these tests measure (the asteroids preset plays its own).
         std::vector<std::string> a{"--bind",          "127.0.0.1", "--port",        "0",  "--tick-rate", "60",
                                    "--snapshot-rate", "20",        "--max-players", "64", "--preset",    "asteroids",
-                                   "--seed",          "1",         "--duration",    "30"};
+                                   "--rules",         "sandbox",   "--seed",        "1",  "--duration",  "30"};
         a.insert(a.end(), extra.begin(), extra.end());
         return a;
     }
@@ -208,9 +209,10 @@ TEST_CASE("a churn of joining and leaving bots leaves no leak and no growth", "[
 #endif
     temp_dir dir;
     const std::string stats = dir.file("stats.json");
-    child_process server(bin_dir + "/arena-server",
-                         {"--port", "0", "--preset", "asteroids", "--stats-json", stats, "--reconnect-grace", "0"},
-                         dir.file("server.log"));
+    child_process server(
+        bin_dir + "/arena-server",
+        {"--port", "0", "--preset", "asteroids", "--rules", "sandbox", "--stats-json", stats, "--reconnect-grace", "0"},
+        dir.file("server.log"));
     const auto port = arena::test::wait_for_listening(server, 5s);
     REQUIRE(port);
     const auto start = std::chrono::steady_clock::now();

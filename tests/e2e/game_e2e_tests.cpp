@@ -117,12 +117,12 @@ TEST_CASE("16 hunter bots play a match: every client's final scoreboard is the s
         }
     }
 
-    // The recording replays to the same scoreboard (names aside: it holds player ids).
+    // The recording replays to the same scoreboard, names included (it held player ids alone).
     child_process replay(bin_dir + "/arena-replay", {dir.file("match.arpl"), "--scoreboard"}, dir.file("replay.log"));
     REQUIRE(replay.wait_for(30s) == 0);
     const std::string out = replay.output();
     const size_t open = out.find('[');
     REQUIRE(open != std::string::npos);
     const json replayed = json::parse(out.substr(open, out.find('\n', open) - open));
-    CHECK(comparable(replayed, false) == comparable(stats.at("scoreboard"), false));
+    CHECK(comparable(replayed, true) == comparable(stats.at("scoreboard"), true));
 }

@@ -26,8 +26,11 @@ struct server_beside_tcp {
         : process(
               bin_dir + "/arena-server",
               [&] {
-                  std::vector<std::string> args = {"--bind",   "127.0.0.1", "--port", "0", port_flag,    "0",
-                                                   "--preset", "asteroids", "--seed", "1", "--duration", "30"};
+                  // The sandbox's rules, which these tests of transports and prediction measure
+                  // (the asteroids preset plays its own rules unless told).
+                  std::vector<std::string> args = {"--bind", "127.0.0.1", "--port",     "0",       port_flag,
+                                                   "0",      "--preset",  "asteroids",  "--rules", "sandbox",
+                                                   "--seed", "1",         "--duration", "30"};
                   args.insert(args.end(), more.begin(), more.end());
                   return args;
               }(),

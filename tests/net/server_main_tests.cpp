@@ -104,6 +104,23 @@ TEST_CASE("arena-server --rules names the game the match plays, and an unknown n
     CHECK(server.stop(SIGTERM) == 0);
 }
 
+TEST_CASE("arena-server --preset asteroids plays the asteroids rules without --rules", "[net][cli]") {
+    // It played the sandbox's: rocks, but no bullets, score or scoreboard in the snapshots.
+    server_process server({"--preset", "asteroids"});
+    test_client client(server.port());
+    client.send_frame(protocol::encode_hello(protocol::protocol_version, "ada", ""));
+    REQUIRE(client.read_until(Payload::Welcome));
+    const auto frame = client.read_until(Payload::Snapshot);
+    REQUIRE(frame);
+    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+    REQUIRE(snapshot);
+    protocol::game_list game;
+    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    REQUIRE(game.players.size() == 1);
+    CHECK(game.players[0].lives == 3);
+    CHECK(server.stop(SIGTERM) == 0);
+}
+
 TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
     const std::string stats = temp_path("hup-stats.json"), recording = temp_path("hup.arpl");
     server_process server({"--stats-json", stats, "--record", recording});

@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -124,6 +125,29 @@ TEST_CASE("ping is answered with pong", "[net][e2e]") {
     auto pong = protocol::decode_pong(*message_of(*frame));
     REQUIRE(pong);
     CHECK(pong.value.client_time == 123456789);
+    // How long the Ping waited in the kernel for the tick's read: the server reads once a tick
+    // (16.7 ms), so at most about one tick; a generous bound for a loaded machine.
+    REQUIRE(pong.value.server_hold_us.has_value());
+    CHECK(*pong.value.server_hold_us < 1'000'000);
+}
+
+TEST_CASE("a Ping that waited for the tick's read is answered with the time it waited", "[net][e2e]") {
+    // The bots measured 17 ms of round trip on loopback: the wait for the server's next read.
+    // Sent right after a snapshot (just after a tick's read), a Ping waits most of a tick.
+    server_process server({});
+    joined_client c(server.port());
+    uint32_t longest_us = 0;
+    for (int k = 0; k < 5; ++k) {
+        REQUIRE(c.client.read_until(Payload::Snapshot));
+        c.client.send_frame(protocol::encode_ping(k + 1));
+        auto frame = c.client.read_until(Payload::Pong);
+        REQUIRE(frame);
+        auto pong = protocol::decode_pong(*message_of(*frame));
+        REQUIRE(pong);
+        REQUIRE(pong.value.server_hold_us.has_value());
+        longest_us = std::max(longest_us, *pong.value.server_hold_us);
+    }
+    CHECK(longest_us > 1000);  // a millisecond: more than a read that answered at once
 }
 
 TEST_CASE("a spectator over TCP watches the full match's bodies and its Input is refused", "[net][e2e][spectator]") {

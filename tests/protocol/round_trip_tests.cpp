@@ -141,7 +141,13 @@ TEST_CASE("Ping, Pong and Bye round-trip", "[protocol]") {
 
     const auto pong = ap::decode_pong(*read_back(ap::encode_pong(99, 0xabcdef01u), storage));
     REQUIRE(pong);
-    CHECK(pong.value == ap::pong_msg{99, 0xabcdef01u});
+    CHECK(pong.value == ap::pong_msg{99, 0xabcdef01u, {}});  // no hold: not measured
+    // The server's hold of the Ping (appended to Pong): 0 is a measured hold, not an absent one.
+    for (const std::uint32_t hold : {0u, 16'500u}) {
+        const auto held = ap::decode_pong(*read_back(ap::encode_pong(99, 7, hold), storage));
+        REQUIRE(held);
+        CHECK(held.value == ap::pong_msg{99, 7, hold});
+    }
 
     const auto bye = ap::decode_bye(*read_back(ap::encode_bye("server restart"), storage));
     REQUIRE(bye);

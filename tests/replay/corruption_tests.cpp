@@ -177,7 +177,7 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
         expected = offset_text(file.path(), 0) + "not an Arena replay file";
     }
     SECTION("header missing") {
-        encoder.append(match::tick_record{0, {}, {}, {}}, bytes);
+        encoder.append(match::tick_record{0, {}, {}, {}, {}}, bytes);
         expected = offset_text(file.path(), 0) + "header missing: the first record is a Tick, not a Header";
     }
     SECTION("bad record length") {
@@ -216,14 +216,14 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
     }
     SECTION("a missing tick") {
         encoder.append(h, bytes);
-        encoder.append(match::tick_record{0, {}, {}, {}}, bytes);
+        encoder.append(match::tick_record{0, {}, {}, {}, {}}, bytes);
         const uint64_t gap = bytes.size();
-        encoder.append(match::tick_record{2, {}, {}, {}}, bytes);
+        encoder.append(match::tick_record{2, {}, {}, {}, {}}, bytes);
         expected = offset_text(file.path(), gap) + "Tick record for tick 2 where tick 1 was expected";
     }
     SECTION("a Hash record for another tick") {
         encoder.append(h, bytes);
-        encoder.append(match::tick_record{0, {}, {}, {}}, bytes);
+        encoder.append(match::tick_record{0, {}, {}, {}, {}}, bytes);
         const uint64_t at = bytes.size();
         encoder.append(hash_check{5, 0}, bytes);
         expected = offset_text(file.path(), at) + "Hash record for tick 5 where the world is at tick 1";
@@ -232,7 +232,7 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
         encoder.append(h, bytes);
         encoder.append(end_marker{0, h.start_hash}, bytes);
         const uint64_t after = bytes.size();
-        encoder.append(match::tick_record{0, {}, {}, {}}, bytes);
+        encoder.append(match::tick_record{0, {}, {}, {}, {}}, bytes);
         expected =
             offset_text(file.path(), after) + std::to_string(bytes.size() - after) + " bytes after the End record";
     }

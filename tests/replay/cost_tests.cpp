@@ -61,6 +61,27 @@ TEST_CASE("a start_tick far past a server's first tick is refused before any ste
     CHECK(run_replay(file.path(), 20).exit_code == 0);
 }
 
+TEST_CASE("a header whose config asks for 30 million rocks is refused before any work", "[replay][cost]") {
+    // The header's config used to be accepted, and arena-replay placed a million rocks (more
+    // than 20 s) before it read a tick.
+    temp_file file("many-rocks");
+    header h = asteroids_header();
+    const std::string count = "\"count\": 40";
+    const size_t at = h.world_config.find(count);
+    REQUIRE(at != std::string::npos);
+    h.world_config.replace(at, count.size(), "\"count\": 30000000");
+    record_encoder encoder;
+    std::vector<uint8_t> bytes;
+    encoder.append(h, bytes);
+    encoder.append(end_marker{0, h.start_hash}, bytes);
+    write_bytes(file.path(), bytes);
+    const auto r = run_replay(file.path(), 20);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output == "arena-replay: " + file.path() +
+                          ": byte offset 0: Header: world config: field 'rocks.count' must be at most 1048576, got "
+                          "30000000\n");
+}
+
 TEST_CASE("a header with a rate no server runs at is refused", "[replay][cost]") {
     temp_file file("rates");
     record_encoder encoder;
@@ -85,7 +106,7 @@ TEST_CASE("30 000 joins in one tick replay in linear time, and more than a serve
     // 120 KB of joins took 18 s: each spawn tried 32 spots against every body already there.
     temp_file file("joins");
     const header h = asteroids_header();
-    match::tick_record tick{0, {}, {}, {}};
+    match::tick_record tick{0, {}, {}, {}, {}};
     for (uint32_t owner = 1; owner <= 30000; ++owner) tick.joins.emplace_back(owner);
     world::world w(world::asteroids_preset(), 1);
     match::apply_tick(w, tick);
@@ -116,7 +137,7 @@ TEST_CASE("a tick of 30 000 leaves replays in linear time", "[replay][cost]") {
     // moved about 5e10 bytes.
     temp_file file("leaves");
     const header h = asteroids_header();
-    match::tick_record joins{0, {}, {}, {}}, leaves{1, {}, {}, {}};
+    match::tick_record joins{0, {}, {}, {}, {}}, leaves{1, {}, {}, {}, {}};
     for (uint32_t owner = 1; owner <= 30000; ++owner) joins.joins.emplace_back(owner);
     world::world w(world::asteroids_preset(), 1);
     for (const world::body_id id : match::apply_tick(w, joins)) leaves.leaves.push_back(id);

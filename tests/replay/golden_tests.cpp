@@ -75,7 +75,8 @@ TEST_CASE("a world version 1 recording is refused with a message naming both ver
 // for 12 s: ships fire, rocks split, ships die and respawn. The rules' state is in every
 // recorded hash, so the replay reproduces the scores bit for bit; scripts/determinism-check.sh
 // replays it from every compiler and architecture too. Its scoreboard is the one the live
-// server wrote to --stats-json (names are not recorded).
+// server wrote to --stats-json (names were not recorded then: tests/e2e/game_e2e_tests.cpp
+// compares a new recording's, names included).
 TEST_CASE("the golden Asteroids match replays to the live scoreboard with every hash matching", "[replay][golden]") {
     auto opened = replayer::open(std::string(ARENA_TEST_DATA_DIR) + "/golden_asteroids_rules.arpl");
     REQUIRE(opened.ok());

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
+#include "protocol/replay_generated.h"
 #include "server/replay/record_format.hpp"
 #include "server/world/little_endian.hpp"
 
@@ -96,8 +98,53 @@ TEST_CASE("a Tick round-trips with joins, leaves and the exact bits of every inp
     }
 }
 
+TEST_CASE("a Tick's join names round-trip, and a tick without them replays nameless", "[replay]") {
+    match::tick_record t;
+    t.tick = 12;
+    t.joins = {world::player_id{4}, world::player_id{9}};
+    t.join_names = {"ada", "Grace Hopper \xc3\xa9"};
+    CHECK(round_trip(t).join_names == t.join_names);
+    t.join_names.clear();  // a tick as recordings before names were recorded hold it
+    const match::tick_record old = round_trip(t);
+    CHECK(old.joins == t.joins);
+    CHECK(old.join_names.empty());
+}
+
+namespace {
+
+// A Tick record with `joins` and `names` as given, whatever their counts.
+std::vector<uint8_t> tick_with_names(const std::vector<uint32_t>& joins, const std::vector<std::string>& names) {
+    namespace fb = protocol::replay;
+    flatbuffers::FlatBufferBuilder b;
+    const auto j = b.CreateVector(joins);
+    const auto n = b.CreateVectorOfStrings(names);
+    fb::TickBuilder tick(b);
+    tick.add_tick(7);
+    tick.add_joins(j);
+    tick.add_join_names(n);
+    const auto content = tick.Finish();
+    fb::FinishSizePrefixedRecordBuffer(b, fb::CreateRecord(b, fb::Content::Tick, content.Union()));
+    std::vector<uint8_t> bytes(b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize());
+    world::append_le32(bytes, record_checksum({bytes.data() + record_prefix_size, bytes.size() - record_prefix_size}));
+    return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("a Tick whose join names do not match its joins, or forge a log line, is refused", "[replay]") {
+    const aligned_frame counts = frame_of(tick_with_names({1, 2}, {"ada"}));
+    const auto a = decode_record(counts.span());
+    CHECK_FALSE(a.ok());
+    CHECK(a.error == "Tick 7: 1 join names for 2 joins");
+    const aligned_frame forged = frame_of(tick_with_names({1}, {"ada\nleave player=2"}));
+    const auto b = decode_record(forged.span());
+    CHECK_FALSE(b.ok());
+    CHECK_THAT(b.error, Catch::StartsWith("Tick 7: join name 0: ") && Catch::Contains("control character"));
+    CHECK(decode_record(frame_of(tick_with_names({1}, {"ada"})).span()).ok());
+}
+
 TEST_CASE("an empty Tick round-trips", "[replay]") {
-    const match::tick_record out = round_trip(match::tick_record{5, {}, {}, {}});
+    const match::tick_record out = round_trip(match::tick_record{5, {}, {}, {}, {}});
     CHECK(out.tick == 5);
     CHECK(out.joins.empty());
     CHECK(out.leaves.empty());
@@ -116,7 +163,7 @@ TEST_CASE("Hash and End records round-trip", "[replay]") {
 TEST_CASE("a Tick with a non-finite input is refused: NaN never enters the world", "[replay]") {
     record_encoder encoder;
     std::vector<uint8_t> bytes;
-    match::tick_record t{3, {}, {}, {{world::body_id{5}, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}};
+    match::tick_record t{3, {}, {}, {{world::body_id{5}, {std::numeric_limits<float>::quiet_NaN(), 0, 0}}}, {}};
     encoder.append(t, bytes);
     const aligned_frame f = frame_of(bytes);
     const auto decoded = decode_record(f.span());

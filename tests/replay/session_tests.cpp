@@ -126,7 +126,7 @@ TEST_CASE("a running recorder has every whole second of ticks on disk", "[replay
     recorder& rec = opened.value;
     const world::body_id player = *w.spawn_player(world::player_id{1});
     for (uint32_t k = 0; k < 75; ++k) {
-        match::tick_record record{w.tick(), {}, {}, {{player, {1, 0.5f, 0}}}};
+        match::tick_record record{w.tick(), {}, {}, {{player, {1, 0.5f, 0}}}, {}};
         match::apply_tick(w, record);
         REQUIRE(rec.record_tick(record, w.hash()).ok());
     }
@@ -152,10 +152,10 @@ TEST_CASE("the recorder refuses a gap in the ticks and a finish at the wrong tic
     auto opened = recorder::open(file.path(), make_header(w, "asteroids", 5, 60));
     REQUIRE(opened.ok());
     recorder& rec = opened.value;
-    match::tick_record record{w.tick(), {}, {}, {}};
+    match::tick_record record{w.tick(), {}, {}, {}, {}};
     match::apply_tick(w, record);
     REQUIRE(rec.record_tick(record, w.hash()).ok());
-    const auto gap = rec.record_tick(match::tick_record{5, {}, {}, {}}, 0);
+    const auto gap = rec.record_tick(match::tick_record{5, {}, {}, {}, {}}, 0);
     CHECK_THAT(gap.error, Catch::Contains("tick 5 recorded where tick 1 was due"));
     CHECK_THAT(rec.finish(7, 0).error, Catch::Contains("finish at tick 7"));
     REQUIRE(rec.finish(w.tick(), w.hash()).ok());

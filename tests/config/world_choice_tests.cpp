@@ -1,0 +1,61 @@
+// arena-server's choice of world and game from --preset, --config and --rules
+// (server/config/world_choice.cpp): a preset plays the rules it is made for.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <variant>
+
+#include "server/config/world_choice.hpp"
+#include "server/world/presets.hpp"
+
+using namespace arena;
+
+namespace {
+
+config::world_choice chosen(const std::string& preset, const std::string& file, const std::string& rules) {
+    auto r = config::choose_world(preset, file, rules);
+    if (auto* e = std::get_if<config::config_error>(&r)) FAIL(e->message);
+    return std::get<config::world_choice>(r);
+}
+
+std::string error_of(const std::string& preset, const std::string& file, const std::string& rules) {
+    auto r = config::choose_world(preset, file, rules);
+    REQUIRE(std::holds_alternative<config::config_error>(r));
+    return std::get<config::config_error>(r).message;
+}
+
+}  // namespace
+
+TEST_CASE("the asteroids preset (--preset asteroids) plays the asteroids rules, not the sandbox's", "[config][preset]") {
+    // It played the sandbox: rocks, but no bullets, score or scoreboard.
+    const config::world_choice c = chosen("asteroids", "", "");
+    CHECK(c.config.rules == world::game_rules::asteroids);
+    CHECK(c.preset == "asteroids");
+    CHECK(c.config.rocks.count == world::asteroids_preset().rocks.count);
+    CHECK(chosen("platformer", "", "").config.rules == world::game_rules::sandbox);
+    CHECK(chosen("pyramid", "", "").config.rules == world::game_rules::sandbox);
+    for (const std::string_view name : world::preset_names()) CHECK(world::preset_rules(name).has_value());
+}
+
+TEST_CASE("the --rules flag overrides the rules of the preset and of a config file", "[config][preset]") {
+    CHECK(chosen("asteroids", "", "sandbox").config.rules == world::game_rules::sandbox);
+    CHECK(chosen("platformer", "", "asteroids").config.rules == world::game_rules::asteroids);
+    const std::string file = "world_choice_tests_config.json";
+    std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "gravity": [0, -1]})";
+    const config::world_choice from_file = chosen("platformer", file, "");
+    CHECK(from_file.config.rules == world::game_rules::asteroids);
+    CHECK(from_file.config.gravity.y() == -1);
+    CHECK(from_file.preset.empty());
+    CHECK(chosen("asteroids", file, "sandbox").config.rules == world::game_rules::sandbox);
+    // A config file without "rules" is a sandbox, whatever preset it starts from.
+    std::ofstream(file) << R"({"preset": "asteroids"})";
+    CHECK(chosen("asteroids", file, "").config.rules == world::game_rules::sandbox);
+    std::remove(file.c_str());
+}
+
+TEST_CASE("an unknown preset or rules name is one line naming the flag", "[config][preset]") {
+    CHECK(error_of("tetris", "", "") == "--preset: unknown preset 'tetris' (asteroids, platformer)");
+    CHECK(error_of("asteroids", "", "chess") == "--rules: unknown rules 'chess' (sandbox, asteroids)");
+    CHECK(error_of("asteroids", "no/such/file.json", "").find("no/such/file.json: cannot open") == 0);
+}
