@@ -73,9 +73,9 @@ void client_core::after_frame(protocol::Payload handled, std::size_t frame_bytes
     if (handled == Payload::Snapshot) on_snapshot(frame_bytes, now);
     if (handled == Payload::Pong) on_pong(now);
     if (handled == Payload::Reject) {
-        const protocol::reject_msg& reject = *session_.reject();
+        // The figures count "code: reason", the session's error without its "Reject ".
         ++shared_.metrics().rejects[session_.error().substr(std::string_view("Reject ").size())];
-        outcome_.server_goodbye = reject.code == protocol::RejectCode::shutting_down;
+        outcome_.server_goodbye = session_.reject_code() == protocol::RejectCode::shutting_down;
     }
     // An orderly goodbye (the server's match is over, or it is stopping), not a fault.
     if (handled == Payload::Bye) outcome_.server_goodbye = true;
@@ -146,7 +146,10 @@ void client_core::take_game() {
     m.game_bytes += game.wire_bytes();
     for (std::size_t i = 0; i < game.name_ids.size(); ++i) names_[game.name_ids[i]] = game.names[i];
     for (const protocol::player_row& row : game.players) players_[row.player] = row;
-    for (const protocol::game_event& e : session_.taken_events()) {
+    std::uint32_t last = session_.events_taken_before();
+    for (const protocol::game_event& e : game.events) {
+        if (e.sequence <= last) continue;  // taken from an earlier snapshot
+        last = e.sequence;
         ++m.game_events;
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
@@ -201,7 +204,19 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
 }
 
 void client_core::send_input(const world::player_input& input) {
-    append_input(shared_.encoder(), session_.next_input(input), pending_);
+    protocol::input_msg message = session_.next_input(input);
+    if (params_.unordered) {
+        // On datagrams each Input repeats the inputs the server has not acknowledged yet (the
+        // newest few): a lost one costs nothing once the next arrives.
+        for (std::size_t i = 0; i < recent_count_; ++i)
+            if (recent_inputs_[i].sequence > session_.last_ack()) message.earlier.push_back(recent_inputs_[i]);
+        if (recent_count_ == recent_inputs_.size()) {
+            std::copy(recent_inputs_.begin() + 1, recent_inputs_.end(), recent_inputs_.begin());
+            --recent_count_;
+        }
+        recent_inputs_[recent_count_++] = {message.sequence, input.thrust, input.turn, input.buttons};
+    }
+    append_input(shared_.encoder(), message, pending_);
     ++shared_.metrics().inputs_sent;
     if (pending_.size() > max_pending_bytes) end(end_kind::transport_error, "server stopped reading our inputs");
 }

@@ -11,6 +11,7 @@
 // up, then bytes or frames as they come, on_tick() once per server tick, finish() at the end.
 // After every call the owner looks at output() (frames to send, in order), closing() (close
 // once the output is written, then call flushed()) and ended() (close now).
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -161,6 +162,10 @@ private:
     std::map<std::uint32_t, protocol::player_row> players_;  // by player id
     std::map<std::uint32_t, std::string> names_;             // by player id
     std::deque<protocol::game_event> events_;
+
+    // Datagrams: the newest inputs sent, oldest first, repeated in the next Inputs.
+    std::array<protocol::earlier_input, protocol::max_earlier_inputs> recent_inputs_{};
+    std::size_t recent_count_ = 0;
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

@@ -1,6 +1,7 @@
 #include "client_sim/session.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <variant>
 
 #include "protocol/config_hash.hpp"
@@ -14,13 +15,19 @@ namespace arena::bots {
 
 namespace {
 
+// "Reject name: reason"; a newer server may send a code we do not know: its number then.
 std::string reject_text(const protocol::reject_msg& reject) {
+    std::string text = "Reject ";
     const char* name = protocol::EnumNameRejectCode(reject.code);
-    // A newer server may send a code we do not know: show its number.
-    const std::string code = (name != nullptr && *name != '\0')
-                                 ? std::string(name)
-                                 : "code " + std::to_string(static_cast<unsigned>(reject.code));
-    return code + ": " + reject.reason;
+    if (name != nullptr && *name != '\0') {
+        text += name;
+    } else {
+        text += "code ";
+        text += std::to_string(static_cast<unsigned>(reject.code));
+    }
+    text += ": ";
+    text += reject.reason;
+    return text;
 }
 
 }  // namespace
@@ -101,8 +108,7 @@ protocol::Payload session::on_welcome(const protocol::Message& message) {
     } else {
         auto parsed = config::parse_config_json(w.world_config);
         if (auto* e = std::get_if<config::config_error>(&parsed)) return fail("Welcome: world_config: " + e->message);
-        own_config_ = std::get<world::world_config>(std::move(parsed));
-        config_ = &*own_config_;
+        config_ = &own_config_.emplace(std::get<world::world_config>(std::move(parsed)));
     }
     welcome_ = std::move(decoded.value);
     player_id_ = welcome_.player_id;
@@ -163,7 +169,7 @@ bool session::take_shapes(const protocol::snapshot_view& snapshot) {
 
 bool session::take_game(const protocol::snapshot_view& snapshot) {
     game_.clear();
-    taken_.clear();
+    events_before_ = last_event_;
     if (snapshot.table == nullptr) return true;
     const std::string problem = protocol::read_game(*snapshot.table, game_);
     if (!problem.empty()) {
@@ -177,7 +183,6 @@ bool session::take_game(const protocol::snapshot_view& snapshot) {
         // A respawn of ours: the new ship is the own body from this snapshot on, predicted
         // like the first.
         if (e.kind == protocol::GameEventKind::respawn && e.player == player_id_) entity_id_ = e.body;
-        taken_.push_back(e);
     }
     return true;
 }
@@ -230,9 +235,8 @@ void session::predict(const protocol::snapshot_view& snapshot) {
 protocol::Payload session::on_reject(const protocol::Message& message) {
     auto reject = protocol::decode_reject(message);
     if (!reject) return fail("Reject: " + reject.error);
-    const std::string text = "Reject " + reject_text(reject.value);
-    reject_ = std::move(reject.value);
-    fail(text, end_kind::by_server);
+    reject_code_ = reject.value.code;
+    fail(reject_text(reject.value), end_kind::by_server);
     return protocol::Payload::Reject;
 }
 
@@ -240,7 +244,12 @@ protocol::Payload session::on_bye(const protocol::Message& message) {
     auto bye = protocol::decode_bye(message);
     if (!bye) return fail("Bye: " + bye.error);
     // An orderly goodbye (the server's match is over, or it is stopping), not a fault.
-    result_ = std::move(bye.value.result);
+    // Swapped in member by member: the session ends here, and the code stays small (WebAssembly).
+    protocol::match_result& r = bye.value.result;
+    result_.over = r.over;
+    result_.winner = r.winner;
+    result_.scoreboard.swap(r.scoreboard);
+    result_.names.swap(r.names);
     fail("Bye: " + bye.value.reason, end_kind::by_server);
     return protocol::Payload::Bye;
 }
@@ -283,7 +292,10 @@ std::vector<own_bullet> session::own_bullets() const {
         // The view is the world after the step that took input view_ack_.
         fly(c.body_id, c.sequence, {at->x(), at->y()}, {at->vx(), at->vy()}, now - view_ack_);
     }
-    std::sort(out.begin(), out.end(), [](const own_bullet& a, const own_bullet& b) { return a.body_id < b.body_id; });
+    // By body id (unique). An insertion sort: a few bullets, and std::sort's instantiation
+    // would add about 8 KB to the WebAssembly module.
+    for (std::size_t i = 1; i < out.size(); ++i)
+        for (std::size_t j = i; j > 0 && out[j].body_id < out[j - 1].body_id; --j) std::swap(out[j], out[j - 1]);
     // A predicted spawn is where the bullet was before the step of the input that fired it.
     for (const predicted_shot& p : shots.waiting()) fly(0, p.sequence, p.position, p.velocity, now - p.sequence + 1);
     return out;
@@ -303,14 +315,7 @@ protocol::input_msg session::next_input(const world::player_input& input) {
     // A NaN input goes to the predictor too (the world skips inputs that fail check_input),
     // so that sequences stay consecutive.
     predictor_->on_input(sequence, input);
-    protocol::input_msg message{sequence, input.thrust, input.turn, input.buttons, delta_ack(), {}};
-    if (options_.unordered) {
-        for (const protocol::earlier_input& e : recent_inputs_)
-            if (e.sequence > last_ack_) message.earlier.push_back(e);
-        if (recent_inputs_.size() == protocol::max_earlier_inputs) recent_inputs_.pop_front();
-        recent_inputs_.push_back({sequence, input.thrust, input.turn, input.buttons});
-    }
-    return message;
+    return {sequence, input.thrust, input.turn, input.buttons, delta_ack(), {}};
 }
 
 std::span<const std::uint8_t> session::input(float thrust, float turn, std::uint8_t buttons) {

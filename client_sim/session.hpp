@@ -11,7 +11,6 @@
 // What is not here is its owner's: the bots add their behaviour, faults and figures; the
 // browser adds interpolation and drawing (in TypeScript) and the inputs of the game.
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <span>
 #include <string>
@@ -58,8 +57,7 @@ struct session_options {
     bool spectator = false;       // Hello.spectator: no body, no inputs; full snapshots of the world
     // The transport carries messages that may be lost, duplicated or reordered (datagrams): a
     // Snapshot or Pong before the Welcome, or a Snapshot no newer than the last one, is dropped
-    // (stale()), not a protocol error as on a stream; and each Input repeats the inputs not yet
-    // acknowledged (the newest few), so that a lost one costs nothing once the next arrives.
+    // (stale()), not a protocol error as on a stream.
     bool unordered = false;
     // A misbehaving bot: acknowledgements that make no sense to it (it flooded, or sent a NaN)
     // are not protocol errors, and its inputs are not paced.
@@ -100,7 +98,7 @@ public:
 
     // The same steps for an owner that encodes into a buffer of its own (the bots): whether
     // this tick's input goes out (the pacing), and the input numbered, predicted and ready to
-    // encode, with the acknowledgement (and on datagrams the earlier inputs). Only once joined.
+    // encode, with the acknowledgement. Only once joined.
     bool send_this_tick();
     protocol::input_msg next_input(const world::player_input& input);
 
@@ -118,8 +116,8 @@ public:
     // The Welcome as it came (world_config, statics and all); empty before it.
     [[nodiscard]] const protocol::welcome_info& welcome() const { return welcome_; }
     [[nodiscard]] const world::world_config* config() const { return config_; }
-    // What ended it, when the server did: the Reject, or the Bye's result.
-    [[nodiscard]] const std::optional<protocol::reject_msg>& reject() const { return reject_; }
+    // What ended it, when the server did: the Reject's code, or the Bye's result.
+    [[nodiscard]] std::optional<protocol::RejectCode> reject_code() const { return reject_code_; }
     [[nodiscard]] const protocol::match_result& result() const { return result_; }
     // The client_time the newest Pong echoed.
     [[nodiscard]] std::uint64_t pong_time() const { return pong_time_; }
@@ -138,12 +136,13 @@ public:
     [[nodiscard]] const protocol::shape_desc* shape_of(std::uint32_t id) const;
 
     // What the newest Snapshot brought, for an owner's figures: the shapes it described, its
-    // game table (lines, names, events as sent), the events taken from it (each once, by
-    // sequence), the size of its delta (bytes; 0 for a full one), the prediction's correction
-    // and the own shots matched with an error (spawn error, m).
+    // game table (lines, names, events as sent; an event is taken once, by sequence: those of
+    // game().events above events_taken_before(), each above the one taken before it), the size
+    // of its delta (bytes; 0 for a full one), the prediction's correction and the own shots
+    // matched with an error (spawn error, m).
     [[nodiscard]] const std::vector<protocol::shape_desc>& arrived() const { return arrived_; }
     [[nodiscard]] const protocol::game_list& game() const { return game_; }
-    [[nodiscard]] const std::vector<protocol::game_event>& taken_events() const { return taken_; }
+    [[nodiscard]] std::uint32_t events_taken_before() const { return events_before_; }
     [[nodiscard]] bool was_delta() const { return was_delta_; }
     [[nodiscard]] std::size_t delta_bytes() const { return delta_bytes_; }
     [[nodiscard]] const predictor::correction& correction() const { return correction_; }
@@ -202,10 +201,9 @@ private:
     std::uint32_t entity_id_ = 0;
     std::optional<predictor> predictor_;
     std::optional<protocol::delta::receiver> deltas_;
-    input_pacer pacer_;                                  // fed by each decoded snapshot, asked by each input
-    std::deque<protocol::earlier_input> recent_inputs_;  // datagrams: repeated in the next Inputs
+    input_pacer pacer_;  // fed by each decoded snapshot, asked by each input
     std::uint32_t last_ack_ = 0;
-    std::optional<protocol::reject_msg> reject_;
+    std::optional<protocol::RejectCode> reject_code_;
     protocol::match_result result_;
     std::uint64_t pong_time_ = 0;
 
@@ -217,8 +215,8 @@ private:
     std::vector<protocol::shape_desc> shapes_;
     std::vector<protocol::shape_desc> arrived_;
     protocol::game_list game_;
-    std::vector<protocol::game_event> taken_;
-    std::uint32_t last_event_ = 0;  // the sequence of the newest game event taken
+    std::uint32_t events_before_ = 0;  // last_event_ before the newest snapshot
+    std::uint32_t last_event_ = 0;     // the sequence of the newest game event taken
     bool was_delta_ = false;
     std::size_t delta_bytes_ = 0;
     predictor::correction correction_;
