@@ -1,15 +1,17 @@
 #pragma once
-// One simulated player with no sockets and no clock: the Welcome checks, client-side
-// prediction and reconciliation, the delta receiver and its acks, the behaviour, the faults
-// and the figures. It takes the server's bytes (or whole frames) and the time, and gives the
-// bytes to send; its owner moves them. arena-bots runs it over TCP (bot.cpp), the tests over
-// a simulated network in virtual time (tests/simnet/), and it builds for WebAssembly: plain
-// C++20 over the world and protocol libraries, nothing else.
+// One simulated player with no sockets and no clock: the session with the server (session.hpp:
+// the Welcome checks, the shapes, the delta receiver and its acks, prediction and
+// reconciliation, input pacing; the browser SDK runs the same code), and around it the
+// behaviour, the faults and the figures. It takes the server's bytes (or whole frames) and
+// the time, and gives the bytes to send; its owner moves them. arena-bots runs it over TCP
+// (bot.cpp), the tests over a simulated network in virtual time (tests/simnet/), and it
+// builds for WebAssembly: plain C++20 over the world and protocol libraries, nothing else.
 //
 // The owner drives it: launch() when it starts connecting, connected() once the transport is
 // up, then bytes or frames as they come, on_tick() once per server tick, finish() at the end.
 // After every call the owner looks at output() (frames to send, in order), closing() (close
 // once the output is written, then call flushed()) and ended() (close now).
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -21,10 +23,10 @@
 
 #include "client_sim/behavior.hpp"
 #include "client_sim/client_shared.hpp"
-#include "client_sim/input_pacer.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
+#include "client_sim/session.hpp"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/framing.hpp"
 #include "server/world/rng.hpp"
@@ -97,45 +99,45 @@ public:
     [[nodiscard]] phase current() const { return phase_; }
     [[nodiscard]] bool ended() const { return phase_ == phase::ended; }
     [[nodiscard]] const bot_outcome& outcome() const { return outcome_; }
-    [[nodiscard]] std::uint32_t player_id() const { return player_id_; }
-    [[nodiscard]] std::uint32_t entity_id() const { return entity_id_; }
+    [[nodiscard]] std::uint32_t player_id() const { return session_.player_id(); }
+    [[nodiscard]] std::uint32_t entity_id() const { return session_.entity_id(); }
     [[nodiscard]] std::uint64_t snapshots() const { return snapshots_; }
     // Null before the Welcome.
-    [[nodiscard]] const predictor* prediction() const { return predictor_ ? &*predictor_ : nullptr; }
-    [[nodiscard]] const protocol::delta::receiver* deltas() const { return deltas_ ? &*deltas_ : nullptr; }
+    [[nodiscard]] const predictor* prediction() const { return session_.prediction(); }
+    [[nodiscard]] const protocol::delta::receiver* deltas() const { return session_.deltas(); }
     // The shape of body `id` (a static one from the Welcome, any other from the snapshots),
     // or null when this client does not hold it. Held while the body is in the newest view.
-    [[nodiscard]] const protocol::shape_desc* shape_of(std::uint32_t id) const;
-    [[nodiscard]] const std::vector<protocol::static_body>& statics() const { return statics_; }
+    [[nodiscard]] const protocol::shape_desc* shape_of(std::uint32_t id) const { return session_.shape_of(id); }
+    [[nodiscard]] const std::vector<protocol::static_body>& statics() const { return session_.statics(); }
+    // The session with the server, which this player drives.
+    [[nodiscard]] const session& server_session() const { return session_; }
     // The game (protocol/README.md, "Players and game events"): every player's line as of the
     // newest snapshot applied, by player id; a player's name ("" before it came); the events
     // taken, oldest first (the newest max_kept_events); the Bye's result once the match ended.
     [[nodiscard]] const std::map<std::uint32_t, protocol::player_row>& players() const { return players_; }
     [[nodiscard]] std::string player_name(std::uint32_t player) const;
     [[nodiscard]] const std::deque<protocol::game_event>& events() const { return events_; }
-    [[nodiscard]] const protocol::match_result& result() const { return result_; }
+    [[nodiscard]] const protocol::match_result& result() const { return session_.result(); }
     static constexpr std::size_t max_kept_events = 256;
     // The last snapshot's ack_sequence (the newest input the server consumed), 0 before one.
-    [[nodiscard]] std::uint32_t last_ack() const { return last_ack_; }
+    [[nodiscard]] std::uint32_t last_ack() const { return session_.last_ack(); }
     // The tick of the newest snapshot applied (0 before one).
-    [[nodiscard]] std::uint32_t last_snapshot_tick() const { return last_snapshot_tick_; }
+    [[nodiscard]] std::uint32_t last_snapshot_tick() const { return session_.last_tick(); }
     // Figures that need the whole run (this core's snapshot rate) into the metrics.
     void add_final_figures(fleet_metrics& metrics) const;
 
 private:
-    void handle_frame(std::span<const std::uint8_t> frame, time_ns now);
-    void on_welcome(const protocol::Message& message);
-    void on_snapshot(const protocol::Message& message, time_ns now);
-    void on_pong(const protocol::Message& message, time_ns now);
-    void on_reject(const protocol::Message& message);
-    void on_bye(const protocol::Message& message);
-    // Keeps the shapes a snapshot describes; false (the session ended) when they are malformed.
-    bool take_shapes(const protocol::snapshot_view& snapshot);
-    // Keeps the lines, names and events a snapshot carries; false (ended) when malformed.
-    bool take_game(const protocol::snapshot_view& snapshot);
+    // The session took a frame (`handled`, NONE when refused or dropped): what follows for
+    // this player, its figures and its end.
+    void after_frame(protocol::Payload handled, std::size_t frame_bytes, time_ns now);
+    void on_welcome();
+    void on_snapshot(std::size_t frame_bytes, time_ns now);
+    void on_pong(time_ns now);
+    // Keeps the lines, names and events the newest snapshot carried.
+    void take_game();
     // The scoreboard this client holds, into the outcome (at the end).
     void record_scoreboard();
-    // The newest view is `bodies`: drops the shapes of bodies not in it, counts those without one.
+    // Counts the newest view's bodies this client holds no shape for.
     void check_shapes(std::span<const protocol::BodyState> bodies);
 
     void send_input(const world::player_input& input);
@@ -150,36 +152,23 @@ private:
     phase phase_ = phase::idle;
     bot_outcome outcome_;
 
-    protocol::frame_reader frames_;
+    session session_;
+    protocol::frame_reader frames_;      // a stream's bytes into frames (on_bytes)
     std::vector<std::uint8_t> pending_;  // frames waiting for the transport
     bool close_after_flush_ = false;
     std::string close_reason_;
 
-    // From the Welcome.
-    std::uint32_t player_id_ = 0;
-    std::uint32_t entity_id_ = 0;
-    std::uint16_t tick_rate_ = 0;
-    std::optional<predictor> predictor_;
-    std::optional<behavior> behavior_;
-    std::optional<protocol::delta::receiver> deltas_;  // when the core asked for delta snapshots
-    std::vector<protocol::BodyState> decoded_;         // the last delta's view as BodyState
-    std::vector<protocol::static_body> statics_;       // the Welcome's, by increasing id
-    std::vector<protocol::shape_desc> shapes_;         // the other bodies' of the newest view, by id
-    std::vector<protocol::shape_desc> arrived_;        // a snapshot's descriptions, being merged
-    std::size_t message_bytes_ = 0;                    // the frame being handled, prefix included
-    std::uint32_t last_ack_ = 0;
+    std::optional<behavior> behavior_;                       // from the Welcome
     std::map<std::uint32_t, protocol::player_row> players_;  // by player id
     std::map<std::uint32_t, std::string> names_;             // by player id
     std::deque<protocol::game_event> events_;
-    std::uint32_t last_event_ = 0;  // the sequence of the newest event taken
-    protocol::game_list game_;      // a snapshot's, being read
-    protocol::match_result result_;
-    std::uint32_t last_snapshot_tick_ = 0;
-    std::deque<protocol::earlier_input> recent_inputs_;  // datagrams: repeated in the next Inputs
+
+    // Datagrams: the newest inputs sent, oldest first, repeated in the next Inputs.
+    std::array<protocol::earlier_input, protocol::max_earlier_inputs> recent_inputs_{};
+    std::size_t recent_count_ = 0;
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;
-    input_pacer pacer_;  // leaves out an input when the server keeps too many waiting
     bool fault_done_ = false;
 
     time_ns launched_at_ = 0;

@@ -8,12 +8,13 @@
 #include <string>
 
 #include "client_sim/metrics.hpp"
+#include "client_sim/session.hpp"
 #include "protocol/messages.hpp"
 #include "server/world/config.hpp"
 
 namespace arena::bots {
 
-class client_shared {
+class client_shared : public config_source {
 public:
     client_shared() = default;
     client_shared(const client_shared&) = delete;
@@ -26,7 +27,7 @@ public:
 
     // The Welcome's world_config parsed once per distinct text (1000 bots share one), or null
     // with `error` set.
-    const world::world_config* config_for(const protocol::welcome_info& welcome, std::string& error);
+    const world::world_config* config_for(const protocol::welcome_info& welcome, std::string& error) override;
 
     // True once the run is ending: a session that ends now did not end early.
     [[nodiscard]] bool stopping() const { return stopping_; }

@@ -202,6 +202,20 @@ TEST_CASE("an ack_sequence that goes back ends the session", "[client_core]") {
     CHECK(c.core.last_ack() == 6);
 }
 
+// The check the browser's session made and the bots' did not, until both ran one session.
+TEST_CASE("a snapshot whose tick goes back on a stream ends the session, as it ends the browser's",
+          "[client_core]") {
+    joined_core c;
+    c.core.on_tick(1, 16 * ms);
+    c.snapshot(110, 1, 100 * ms);
+    REQUIRE_FALSE(c.core.ended());
+    c.snapshot(110, 1, 150 * ms);
+    REQUIRE(c.core.ended());
+    CHECK(c.core.outcome().protocol_error);
+    CHECK(c.core.outcome().reason == "Snapshot: tick went back");
+    CHECK(c.core.server_session().error() == "Snapshot: tick went back");
+}
+
 TEST_CASE("an ack of an input never sent ends the session", "[client_core]") {
     joined_core c;
     c.core.on_tick(1, 16 * ms);

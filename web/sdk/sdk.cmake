@@ -90,7 +90,7 @@ add_custom_target(arena_sdk_ts ALL DEPENDS ${dist_dir}/arena-sdk.mjs)
 add_dependencies(arena_sdk_ts arena_sdk_wasm)
 
 # A real match's session, recorded from the native build for the tests to replay in wasm.
-add_executable(arena-sdk-record-session fixtures/record_session.cpp core/session.cpp)
+add_executable(arena-sdk-record-session fixtures/record_session.cpp)
 target_link_libraries(arena-sdk-record-session PRIVATE arena_match arena_client_core arena_config)
 set(session_fixture ${sdk_dir}/fixtures/session.json)
 add_custom_command(

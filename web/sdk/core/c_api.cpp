@@ -1,8 +1,9 @@
-// The C API the TypeScript SDK calls (web/sdk/src/core.ts): a session (session.hpp) and the
-// replay of a recording. Plain extern "C" functions over integers, floats and pointers into the
-// module's memory, so that the JavaScript side needs no binding library: it copies a frame in,
-// calls, and reads the answer where the returned pointer says. Pointers stay valid until the
-// next call on the same handle.
+// The C API the TypeScript SDK calls (web/sdk/src/core.ts): a session with the server (the
+// client core the bots run too: client_sim/session.hpp) and the replay of a recording. Plain
+// extern "C" functions over integers, floats and pointers into the module's memory, so that
+// the JavaScript side needs no binding library: it copies a frame in, calls, and reads the
+// answer where the returned pointer says. Pointers stay valid until the next call on the same
+// handle.
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
@@ -13,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "client_sim/session.hpp"
 #include "server/match/shape_wire.hpp"
 #include "server/replay/replayer.hpp"
 #include "web/sdk/core/replay_player.hpp"
-#include "web/sdk/core/session.hpp"
 
 #ifdef __EMSCRIPTEN__
 #include <emscripten/emscripten.h>
@@ -57,16 +58,16 @@ sdk_shape to_sdk(const arena::protocol::shape_desc& d) {
     return s;
 }
 
-// An own bullet (session.hpp): body_id, sequence, x, y, vx, vy; 24 bytes.
-static_assert(sizeof(arena::sdk::own_bullet) == 24);
+// An own bullet (client_sim/session.hpp): body_id, sequence, x, y, vx, vy; 24 bytes.
+static_assert(sizeof(arena::bots::own_bullet) == 24);
 
 struct client {
-    arena::sdk::session session;
+    arena::bots::session session;
     std::vector<sdk_shape> shapes;
     std::vector<sdk_static> statics;
-    std::vector<arena::sdk::own_bullet> bullets;  // arena_own_bullets's
+    std::vector<arena::bots::own_bullet> bullets;  // arena_own_bullets's
     float predicted[6] = {};
-    client(bool delta, bool spectator) : session(delta, spectator) {}
+    client(bool delta, bool spectator) : session({.delta_snapshots = delta, .spectator = spectator}) {}
 };
 
 struct replay {
@@ -135,7 +136,7 @@ ARENA_API const char* arena_error(const client* c) {
 }
 
 // Outgoing frames: each call returns the frame's size; arena_out points at it. arena_input
-// returns 0 for a tick the input pacing leaves out (session.hpp): there is nothing to send.
+// returns 0 for a tick the input pacing leaves out (client_sim/session.hpp): there is nothing to send.
 ARENA_API std::uint32_t arena_hello(client* c, const char* name, const char* token) {
     return out_size(c->session.hello(name, token));
 }
@@ -231,9 +232,9 @@ ARENA_API const float* arena_predicted(client* c) {
     std::memcpy(c->predicted, values, sizeof(values));
     return c->predicted;
 }
-// The own bullets where the prediction has them now (session.hpp): 24 bytes each, as many as
+// The own bullets where the prediction has them now (client_sim/session.hpp): 24 bytes each, as many as
 // arena_own_bullet_count says, valid until the next call of this.
-ARENA_API const arena::sdk::own_bullet* arena_own_bullets(client* c) {
+ARENA_API const arena::bots::own_bullet* arena_own_bullets(client* c) {
     c->bullets = c->session.own_bullets();
     return c->bullets.data();
 }

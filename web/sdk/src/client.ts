@@ -20,6 +20,9 @@ export interface SocketLike {
   onerror: ((ev: unknown) => void) | null;
 }
 
+/** The WebSocket close code of a session the SDK ends because the server broke the protocol. */
+export const PROTOCOL_ERROR_CLOSE_CODE = 4002;
+
 export interface ConnectOptions {
   /** A loaded core to share; otherwise one is loaded with coreOptions. */
   core?: Core;
@@ -306,7 +309,10 @@ export class ArenaClient {
   }
 
   private fail(reason: string): void {
-    this.socket.close(1002, 'protocol error');
+    // Browsers let a page close with 1000 or 3000-4999 only (any other code throws
+    // InvalidAccessError, and the bye below would never be emitted): 4002 is 1002's
+    // "protocol error" in the range kept for applications.
+    this.socket.close(PROTOCOL_ERROR_CLOSE_CODE, 'protocol error');
     this.finish({ reason, matchOver: false, winner: 0, scoreboard: [] });
   }
 

@@ -1,5 +1,5 @@
-// One player's session in the WebAssembly core (web/sdk/core/session.hpp): no socket, no
-// clock. The client (client.ts) moves its frames; tests drive it directly.
+// One player's session in the WebAssembly core (client_sim/session.hpp, the client core the
+// bots run too): no socket, no clock. The client (client.ts) moves its frames; tests drive it directly.
 import { BodyState, Core, Shape, StaticBody } from './core.js';
 
 /** The own body as predicted for the last input sent. */

@@ -12,13 +12,25 @@ import { fixtures, fromBase64, loadCore, protocol, sdk } from './helpers.mjs';
 
 const recorded = JSON.parse(fs.readFileSync(path.join(fixtures, 'session.json'), 'utf8'));
 
+// Closes as a browser's WebSocket does: a code other than 1000 or 3000-4999 throws
+// InvalidAccessError, a reason over 123 bytes of UTF-8 throws SyntaxError.
 class FakeSocket {
   binaryType = 'blob';
   sent = [];
   closed = false;
+  closeCode = undefined;
+  closeReason = undefined;
   onopen = null; onmessage = null; onclose = null; onerror = null;
   send(data) { this.sent.push(new Uint8Array(data)); }
-  close() { this.closed = true; }
+  close(code, reason) {
+    if (code !== undefined && code !== 1000 && (code < 3000 || code > 4999))
+      throw new DOMException(`close code ${code} is neither 1000 nor in 3000-4999`, 'InvalidAccessError');
+    if (reason !== undefined && Buffer.byteLength(reason, 'utf8') > 123)
+      throw new DOMException('close reason longer than 123 bytes', 'SyntaxError');
+    this.closed = true;
+    this.closeCode = code;
+    this.closeReason = reason;
+  }
 }
 
 test('a game client over a fake socket sends what the native session sent and draws the match', async () => {
@@ -99,6 +111,21 @@ test('a frame the core refuses ends the session with a bye event that says why',
   assert.equal(byes.length, 1);
   assert.match(byes[0].reason, /invalid message from the server/);
   assert.equal(socket.closed, true);
+  assert.equal(socket.closeCode, sdk.PROTOCOL_ERROR_CLOSE_CODE);
+  assert.ok(socket.closeCode >= 4000 && socket.closeCode <= 4999, 'a code a browser lets a page send');
+  assert.equal(socket.closeReason, 'protocol error');
+});
+
+test('a text message from the server closes with a code a browser accepts, and the bye says why', async () => {
+  const core = await loadCore();
+  let socket;
+  const client = await sdk.connect('ws://test/ws', 'x', '', { core, socket: () => (socket = new FakeSocket()), now: () => 0, autoPump: false });
+  const byes = [];
+  client.on('bye', (b) => byes.push(b));
+  socket.onmessage({ data: 'hello' });
+  assert.equal(byes.length, 1);
+  assert.equal(byes[0].reason, 'a text message from the server');
+  assert.equal(socket.closeCode, sdk.PROTOCOL_ERROR_CLOSE_CODE);
 });
 
 test('a spectator says so in its Hello, sends no Input, and draws the whole match with no own ship', async () => {

@@ -1,9 +1,10 @@
-// The browser SDK's session core (web/sdk/core/session.*), natively: after a respawn of its
-// own player the session predicts the new ship, it paces its inputs, as the bots' client core
-// does, and it places the own bullets where the prediction has them.
+// The session with the server (client_sim/session.hpp), which the bots and the browser SDK's
+// WebAssembly module both run: after a respawn of its own player the session predicts the new
+// ship, it paces its inputs, and it places the own bullets where the prediction has them.
 #include <catch2/catch.hpp>
 #include <vector>
 
+#include "client_sim/session.hpp"
 #include "protocol/config_hash.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/codec.hpp"
@@ -13,7 +14,6 @@
 #include "server/rules/asteroids_shot.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
-#include "web/sdk/core/session.hpp"
 
 using namespace arena;
 
@@ -85,8 +85,8 @@ std::uint32_t sequence_of(std::span<const std::uint8_t> frame) {
 }  // namespace
 
 TEST_CASE("after its own respawn the session predicts the new ship, and other players' respawns change nothing",
-          "[sdk][client]") {
-    sdk::session s(false);
+          "[client]") {
+    bots::session s({.delta_snapshots = false});
     (void)s.hello("probe", "");
     REQUIRE(s.feed(welcome()) == protocol::Payload::Welcome);
     (void)s.input(0, 0, 0);
@@ -116,8 +116,8 @@ TEST_CASE("after its own respawn the session predicts the new ship, and other pl
 }
 
 TEST_CASE("after two delta snapshots in a row with extra inputs waiting the session leaves one tick's input out",
-          "[sdk][client][pacing]") {
-    sdk::session s;
+          "[client][pacing]") {
+    bots::session s;
     (void)s.hello("probe", "");
     REQUIRE(s.feed(welcome()) == protocol::Payload::Welcome);
     std::uint32_t tick = 101;
@@ -165,8 +165,8 @@ TEST_CASE("after two delta snapshots in a row with extra inputs waiting the sess
 }
 
 TEST_CASE("an own shot is placed at the nose as it is fired and once the server's bullet where the prediction had it",
-          "[sdk][client][shots]") {
-    sdk::session s(false);
+          "[client][shots]") {
+    bots::session s({.delta_snapshots = false});
     (void)s.hello("probe", "");
     REQUIRE(s.feed(welcome(true)) == protocol::Payload::Welcome);
     (void)s.input(0, 0, 0);
@@ -176,7 +176,7 @@ TEST_CASE("an own shot is placed at the nose as it is fired and once the server'
     // Input 2 fires from the ship at rest, facing +x: the bullet spawns 1.5 + 0.2 + 0.1 m ahead
     // at 2 N·s / 0.05 kg = 40 m/s, and is drawn after that input's step.
     (void)s.input(0, 0, rules::button_fire);
-    std::vector<sdk::own_bullet> bullets = s.own_bullets();
+    std::vector<bots::own_bullet> bullets = s.own_bullets();
     REQUIRE(bullets.size() == 1);
     CHECK(bullets[0].body_id == 0);
     CHECK(bullets[0].sequence == 2);
@@ -188,7 +188,7 @@ TEST_CASE("an own shot is placed at the nose as it is fired and once the server'
     (void)s.input(0, 0, 0);
     bullets = s.own_bullets();
     REQUIRE(bullets.size() == 1);
-    const sdk::own_bullet before = bullets[0];
+    const bots::own_bullet before = bullets[0];
     CHECK(before.x == Approx(11.8f + 3 * 40.0f * dt).margin(1e-4));
 
     // The server's snapshot after input 3 holds the bullet (body 20), moved by the world's two
