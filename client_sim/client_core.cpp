@@ -188,8 +188,8 @@ void client_core::on_pong(time_ns now) {
     const double rtt_ms = static_cast<double>(now - sent) / 1e6;
     shared_.metrics().rtt_ms.add(rtt_ms);
     shared_.metrics().interval_rtt_ms.add(rtt_ms);
-    if (pong.value.server_hold_us) {
-        const double hold_ms = std::min(static_cast<double>(*pong.value.server_hold_us) / 1e3, rtt_ms);
+    if (const std::optional<std::uint32_t> hold_us = session_.pong_server_hold_us()) {
+        const double hold_ms = std::min(static_cast<double>(*hold_us) / 1e3, rtt_ms);
         shared_.metrics().server_hold_ms.add(hold_ms);
         shared_.metrics().network_rtt_ms.add(rtt_ms - hold_ms);
     }

@@ -81,6 +81,7 @@ protocol::Payload session::handle(std::span<const std::uint8_t> frame) {
         const auto pong = protocol::decode_pong(message);
         if (!pong) return fail("Pong: " + pong.error);
         pong_time_ = pong.value.client_time;
+        pong_server_hold_us_ = pong.value.server_hold_us;
         return type;
     }
     if (type == Payload::Reject) return on_reject(message);

@@ -121,6 +121,8 @@ public:
     [[nodiscard]] const protocol::match_result& result() const { return result_; }
     // The client_time the newest Pong echoed.
     [[nodiscard]] std::uint64_t pong_time() const { return pong_time_; }
+    // How long the server held that Ping before it read it (µs); none: the server did not say.
+    [[nodiscard]] std::optional<std::uint32_t> pong_server_hold_us() const { return pong_server_hold_us_; }
 
     // The newest snapshot: its tick, ack and bodies (by increasing id; dequantised for a delta).
     [[nodiscard]] std::uint32_t view_tick() const { return view_tick_; }
@@ -206,6 +208,7 @@ private:
     std::optional<protocol::RejectCode> reject_code_;
     protocol::match_result result_;
     std::uint64_t pong_time_ = 0;
+    std::optional<std::uint32_t> pong_server_hold_us_;
 
     bool have_tick_ = false;
     std::uint32_t last_tick_ = 0;  // the newest Snapshot's, decoded or not
