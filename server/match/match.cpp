@@ -76,45 +76,6 @@ uint32_t match::player_of(const connection& c) const {
     return it == clients_.end() ? 0 : it->second.player_id.value();
 }
 
-bool match::connect(connection& c) {
-    client cl;
-    cl.serial = next_serial_++;
-    cl.address = std::string(c.address());
-    cl.standing.connected_tick = world_.tick();
-    auto [it, inserted] = clients_.emplace(&c, cl);
-    if (!inserted) return true;  // already known: a transport bug, but harmless
-    ++awaiting_hello_;
-    auto verdict = admission_.admit_connection(clients_.size(), awaiting_hello_);
-    if (auto* no = std::get_if<rejection>(&verdict)) {
-        reject(c, *no);
-        return false;
-    }
-    if (std::get<admission::connection_verdict>(verdict) == admission::connection_verdict::make_room) {
-        if (connection* evicted = oldest_waiting_of_busiest_address(&c)) reject(*evicted, admission::waiting_evicted());
-    }
-    return true;
-}
-
-connection* match::oldest_waiting_of_busiest_address(const connection* newcomer) const {
-    std::unordered_map<std::string_view, size_t> waiting;  // by address
-    for (const auto& [c, cl] : clients_)
-        if (cl.standing.at == client_standing::stage::awaiting_hello) ++waiting[cl.address];
-    const client* chosen = nullptr;
-    const connection* chosen_connection = nullptr;
-    size_t chosen_count = 0;
-    for (const auto& [c, cl] : clients_) {
-        if (c == newcomer || cl.standing.at != client_standing::stage::awaiting_hello) continue;
-        const size_t count = waiting[cl.address];
-        // The busiest address first, then the oldest connection: a fixed choice (serials are unique).
-        if (!chosen || count > chosen_count || (count == chosen_count && cl.serial < chosen->serial)) {
-            chosen = &cl;
-            chosen_connection = c;
-            chosen_count = count;
-        }
-    }
-    return const_cast<connection*>(chosen_connection);
-}
-
 bool match::receive(connection& c, const protocol::Message& message) {
     const int64_t tick_ns = 1'000'000'000LL / std::max<uint16_t>(1, config_.tick_rate);
     return receive(c, message, static_cast<int64_t>(world_.tick()) * tick_ns);
@@ -148,113 +109,6 @@ bool match::receive(connection& c, const protocol::Message& message, int64_t arr
     return false;
 }
 
-bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello) {
-    auto who = admission_.admit_hello(hello, draining_);
-    if (auto* no = std::get_if<rejection>(&who)) {
-        reject(c, *no);
-        return false;
-    }
-    admitted_hello& admitted = std::get<admitted_hello>(who);
-    if (admitted.spectator) return on_spectator_hello(c, cl, admitted);
-    auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
-    const std::optional<bool> same_connected =
-        same == players_.end() ? std::nullopt : std::optional<bool>(same->second.who != nullptr);
-    auto verdict = admission_.admit_join(same_connected, live_player_count());
-    if (auto* no = std::get_if<rejection>(&verdict)) {
-        reject(c, *no);
-        return false;
-    }
-    world::player_id id;
-    if (std::get<join_kind>(verdict) == join_kind::new_player) {
-        if (players_.size() >= config_.max_players) give_up_oldest_in_grace();
-        id = world::player_id{next_player_id_++};
-        players_.emplace(id, player{&c,
-                                    admitted.name,
-                                    admitted.identity,
-                                    0,
-                                    {},
-                                    input_buffer(config_.input_buffer),
-                                    snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget()),
-                                    0,
-                                    game_.version()});
-        pending_joins_.push_back(id);
-    } else {
-        // The same player again: a reconnection, or a new connection taking over.
-        id = same->first;
-        player& p = same->second;
-        connection* old = p.who;
-        p.who = &c;  // first: the old connection's leave must not touch the player
-        if (old) {
-            if (auto old_it = clients_.find(old); old_it != clients_.end())
-                forget(old_it, close_cause{close_cause::kind::taken_over, {}, {}});
-            old->close_with_bye("signed in from another connection");
-            ++counters_.takeovers;
-        } else {
-            ++counters_.reconnects;
-        }
-        p.inputs = input_buffer(config_.input_buffer);
-        p.snapshots =
-            snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget());  // holds no baseline yet
-        p.game_sent = 0;
-        p.events_from = game_.version();
-        if (p.body_id) pending_welcomes_.push_back(id);
-        log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
-    }
-    cl.player_id = id;
-    cl.standing.at = client_standing::stage::joined;  // a new connection numbers its inputs from 1 again
-    cl.standing.last_input_tick = world_.tick();      // the idle timeout starts now
-    --awaiting_hello_;
-    const std::string_view peer = c.peer();
-    // The admitted name: the signed one with a token secret, never merely the claimed one.
-    log_("hello player=%u name=%s from %.*s", id.value(), players_.at(id).name.c_str(), static_cast<int>(peer.size()),
-         peer.data());
-    return true;
-}
-
-bool match::on_spectator_hello(connection& c, client& cl, const admitted_hello& admitted) {
-    if (auto no = admission_.admit_spectator(spectators_.size())) {
-        reject(c, *no);
-        return false;
-    }
-    // An id from the players' sequence, so that the Welcome's player_id is never 0 and names
-    // nobody else; it never gets a body, so it is never on the scoreboard.
-    const world::player_id id{next_player_id_++};
-    // BodyState snapshots whatever the Hello asked: a delta is encoded against the view the
-    // client acknowledged in its Inputs, and a spectator sends none. With the whole world as
-    // the view (no view radius), that is the shared frame: one copy per spectator.
-    spectator& s =
-        spectators_
-            .emplace(id, spectator{&c, admitted.name, snapshot_client(baseline_ring(), false, c.snapshot_budget()), 0,
-                                   game_.version()})
-            .first->second;
-    cl.player_id = id;
-    cl.standing.at = client_standing::stage::joined;
-    cl.standing.spectator = true;
-    cl.standing.last_input_tick = world_.tick();  // the idle timeout (kept off by Pings) starts now
-    --awaiting_hello_;
-    protocol::welcome_info welcome = welcome_for(id.value(), 0);  // entity_id 0: no body of its own
-    welcome.view_radius = 0;                                      // its snapshots hold every body
-    send_welcome(c, s.snapshots, welcome);
-    const std::string_view peer = c.peer();
-    log_("spectate id=%u name=%s from %.*s", id.value(), s.name.c_str(), static_cast<int>(peer.size()), peer.data());
-    return true;
-}
-
-void match::give_up_oldest_in_grace() {
-    auto oldest = players_.end();
-    for (auto it = players_.begin(); it != players_.end(); ++it) {
-        if (it->second.who) continue;
-        if (oldest == players_.end() || it->second.disconnected_at_tick < oldest->second.disconnected_at_tick)
-            oldest = it;  // ties: the lowest player id, the map's order
-    }
-    if (oldest != players_.end()) remove_player(oldest, "reconnect grace given up: a new player needed the slot");
-}
-
-size_t match::players_in_grace() const {
-    return static_cast<size_t>(
-        std::count_if(players_.begin(), players_.end(), [](const auto& p) { return p.second.who == nullptr; }));
-}
-
 bool match::on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns) {
     auto it = players_.find(cl.player_id);
     if (it == players_.end()) return true;
@@ -276,12 +130,6 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
     counters_.inputs_lost += in.lost;
     p.inputs.push({input.sequence, in.input});
     return true;
-}
-
-match::player_map::iterator match::find_identity(const std::string& identity) {
-    for (auto it = players_.begin(); it != players_.end(); ++it)
-        if (it->second.identity == identity) return it;
-    return players_.end();
 }
 
 void match::reject(connection& c, const rejection& why) {
@@ -419,31 +267,6 @@ void match::tick() {
     send_snapshots();
 }
 
-void match::tag_new_bodies() {
-    if (!rules_->has_state()) return;  // sandbox rules tag nothing
-    // Ids only grow, and bodies are in id order: the new ones are the tail.
-    const std::span<const world::body> bodies = world_.bodies();
-    auto it = std::lower_bound(bodies.begin(), bodies.end(), kinds_asked_below_,
-                               [](const world::body& b, uint32_t id) { return b.id < id; });
-    for (; it != bodies.end(); ++it) {
-        if (const uint8_t kind = rules_->kind_of(it->id); kind != 0) kinds_.set(it->id, kind);
-        if (const rules::shot_record* shot = rules_->shot_of(it->id)) record_origin(it->id, *shot);
-    }
-    if (!bodies.empty()) kinds_asked_below_ = std::max(kinds_asked_below_, bodies.back().id + 1);
-}
-
-void match::record_origin(uint32_t body_id, const rules::shot_record& shot) {
-    const auto p = players_.find(world::player_id{shot.shooter});
-    if (p == players_.end()) return;
-    const float values[] = {shot.position.x(), shot.position.y(), shot.velocity.x(), shot.velocity.y()};
-    // A diverged world's NaN stays off the wire, as snapshot encoders keep it out of BodyState.
-    for (const float v : values)
-        if (!std::isfinite(v)) return;
-    // The tick that fired it consumed this input: the bullet appeared in it.
-    origins_.add(
-        {body_id, shot.shooter, p->second.inputs.last_consumed_sequence(), values[0], values[1], values[2], values[3]});
-}
-
 void match::check_clients() {
     struct refusal {
         uint64_t serial;
@@ -474,107 +297,6 @@ void match::spawn_pending(const std::vector<world::player_id>& owners, const std
         if (p.who) send_welcome(owners[i], p);
         log_("join player=%u body=%u name=%s", owners[i].value(), p.body_id.value(), p.name.c_str());
     }
-}
-
-protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) const {
-    protocol::welcome_info welcome;
-    welcome.player_id = player_id;
-    welcome.entity_id = body_id;
-    welcome.tick = world_.tick();
-    welcome.tick_rate = config_.tick_rate;
-    welcome.snapshot_rate = config_.snapshot_rate;
-    welcome.preset = config_.preset;
-    welcome.world_config = world_config_json_;
-    welcome.world_config_hash = world_config_hash_;
-    welcome.world_version = world::world_version;
-    welcome.view_radius = config_.view_radius;
-    welcome.statics = static_geometry(world_, kinds_);
-    return welcome;
-}
-
-void match::send_welcome(world::player_id id, player& p) {
-    send_welcome(*p.who, p.snapshots, welcome_for(id.value(), p.body_id.value()));
-}
-
-void match::send_welcome(connection& c, snapshot_client& snapshots, const protocol::welcome_info& welcome) {
-    const auto bodies = world_.bodies();
-    // Ids grow: a static body added later has an id past this, and snapshots describe it.
-    snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
-    c.send(protocol::encode_welcome(welcome));
-}
-
-void match::send_snapshots() {
-    // BodyState clients all get theirs on the ticks that are multiples of the interval (one
-    // shared frame when they see the whole world). Delta clients cost a view query and an
-    // encoding each, so they are spread over the interval by player id: a third of them on
-    // each tick at 60 Hz ticks and 20 Hz snapshots, not all of them on one tick.
-    const uint32_t interval = snapshot_interval();
-    const uint32_t phase = world_.tick() % interval;
-    kinds_.forget_missing(world_.bodies());
-    origins_.forget_missing(world_.bodies());
-    // The shared frame (BodyState clients of whole-world views, on the interval's ticks)
-    // carries what changed since the previous one: its clients got that one.
-    const bool shared_due = phase == 0 && fanout_.shared_full_frame() && !game_.empty();
-    if (shared_due) shared_game_through_ = game_.collect(shared_game_sent_, shared_game_sent_, shared_game_);
-    fanout_.begin(world_, &kinds_, shared_due ? &shared_game_ : nullptr, &origins_);
-    // By id rather than by iterator: a send may end a connection, and with it a player.
-    for (auto it = players_.begin(); it != players_.end();) {
-        const world::player_id id = it->first;
-        player& p = it->second;
-        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase) {
-            const size_t waiting = p.inputs.waiting();
-            p.snapshots.extra_inputs_waiting =
-                static_cast<uint16_t>(waiting > 1 ? std::min<size_t>(waiting - 1, 65535) : 0);
-            send_snapshot(p, p.body_id, p.inputs.last_consumed_sequence());
-        }
-        it = players_.upper_bound(id);
-    }
-    // Spectators, BodyState clients all, on the interval's ticks, after the players.
-    if (phase == 0) {
-        for (auto it = spectators_.begin(); it != spectators_.end();) {
-            const world::player_id id = it->first;
-            send_snapshot(it->second, world::body_id{}, 0);  // no body: the whole world; no input to acknowledge
-            it = spectators_.upper_bound(id);
-        }
-    }
-    // The fan-out builds the shared frame only for a client that takes it.
-    if (shared_due && fanout_.last_shared_tick() == world_.tick()) shared_game_sent_ = shared_game_through_;
-}
-
-template <class Reader>
-const protocol::game_list* match::game_for(const Reader& r, uint32_t& through) {
-    if (game_.empty()) return nullptr;
-    uint32_t held = 0;
-    if (r.snapshots.delta) {
-        held = r.snapshots.game_held;  // what its acknowledged snapshots brought
-    } else {
-        held = r.game_sent;  // a stream: what was sent arrived
-    }
-    // Within a datagram the game takes at most half: the bodies keep the rest.
-    const size_t game_budget = r.snapshots.budget / 2;
-    through = game_.collect(held, r.events_from, game_list_, game_budget);
-    return &game_list_;
-}
-
-template <class Reader>
-void match::send_snapshot(Reader& r, world::body_id own, uint32_t ack) {
-    ++counters_.snapshots_sent;
-    if (!r.snapshots.delta && fanout_.shared_full_frame()) {
-        if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(r.snapshots)) {
-            counters_.snapshot_bytes = shared->frame().size();
-            r.game_sent = shared_game_through_;
-            r.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
-            return;
-        }
-    }
-    uint32_t through = 0;
-    const protocol::game_list* game = game_for(r, through);
-    if (!r.snapshots.delta) r.game_sent = through;
-    const auto frame = r.snapshots.delta ? fanout_.delta_frame(r.snapshots, own, ack, game)
-                                         : fanout_.full_frame(r.snapshots, own, ack, game);
-    if (r.snapshots.delta) r.snapshots.views.record_game(world_.tick(), through);
-    counters_.snapshot_bytes = frame.size();
-    r.who->send_snapshot_frame(frame);
 }
 
 std::vector<match::named_score> match::scoreboard() const {

@@ -8,6 +8,7 @@
 #include "protocol/decode.hpp"
 #include "protocol/framing.hpp"
 #include "protocol/verify.hpp"
+#include "server/world/input.hpp"
 
 using namespace arena::bots;
 namespace protocol = arena::protocol;
@@ -82,8 +83,15 @@ TEST_CASE("inputs and pings appended with the shared builder decode back", "[bot
         if (seen.size() == 1)
             CHECK(protocol::decode_input(*message.value).value == protocol::input_msg{7, 0.25f, -1.0f, 1});
         if (seen.size() == 2) CHECK(protocol::decode_ping(*message.value).value.client_time == 0x0102030405060708ULL);
-        // The NaN input is well formed; the server's decoder is what refuses it.
-        if (seen.size() == 3) CHECK_FALSE(protocol::decode_input(*message.value).ok());
+        // The NaN input is well formed and decodes as sent: admission is what refuses it
+        // (world::check_input, the one check of an Input's numbers).
+        if (seen.size() == 3) {
+            const auto nan = protocol::decode_input(*message.value);
+            REQUIRE(nan.ok());
+            CHECK(std::isnan(nan.value.thrust));
+            CHECK(arena::world::check_input({nan.value.thrust, nan.value.turn, nan.value.buttons}) ==
+                  "thrust is not a finite number");
+        }
         reader.next();
     }
     CHECK(seen.size() == 3);
