@@ -203,8 +203,7 @@ TEST_CASE("an ack_sequence that goes back ends the session", "[client_core]") {
 }
 
 // The check the browser's session made and the bots' did not, until both ran one session.
-TEST_CASE("a snapshot whose tick goes back on a stream ends the session, as it ends the browser's",
-          "[client_core]") {
+TEST_CASE("a snapshot whose tick goes back on a stream ends the session, as it ends the browser's", "[client_core]") {
     joined_core c;
     c.core.on_tick(1, 16 * ms);
     c.snapshot(110, 1, 100 * ms);

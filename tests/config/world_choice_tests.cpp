@@ -27,7 +27,8 @@ std::string error_of(const std::string& preset, const std::string& file, const s
 
 }  // namespace
 
-TEST_CASE("the asteroids preset (--preset asteroids) plays the asteroids rules, not the sandbox's", "[config][preset]") {
+TEST_CASE("the asteroids preset (--preset asteroids) plays the asteroids rules, not the sandbox's",
+          "[config][preset]") {
     // It played the sandbox: rocks, but no bullets, score or scoreboard.
     const config::world_choice c = chosen("asteroids", "", "");
     CHECK(c.config.rules == world::game_rules::asteroids);

@@ -126,8 +126,7 @@ TEST_CASE("ops http: a request with bare LF line endings gets 400 at once, not s
     CHECK(f.scrapes == 0);
 }
 
-TEST_CASE("ops http: HEAD /healthz is answered like GET, without the body (load balancers' probes)",
-          "[ops][http]") {
+TEST_CASE("ops http: HEAD /healthz is answered like GET, without the body (load balancers' probes)", "[ops][http]") {
     endpoint_fixture f;
     const std::string head = http_exchange(f.server.port(), "HEAD /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
     CHECK(status_of(head) == 200);
