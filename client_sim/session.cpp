@@ -313,9 +313,11 @@ bool session::send_this_tick() {
 
 protocol::input_msg session::next_input(const world::player_input& input) {
     const std::uint32_t sequence = predictor_->last_sequence() + 1;
-    // A NaN input goes to the predictor too (the world skips inputs that fail check_input),
-    // so that sequences stay consecutive.
-    predictor_->on_input(sequence, input);
+    // The world takes only inputs that pass check_input (it asserts so): a non-finite one (a
+    // misbehaving bot's, a page's bug) is predicted as no input, which the server never applies
+    // either (it refuses the connection), and the sequences stay consecutive.
+    const bool finite = !world::check_input(input);
+    predictor_->on_input(sequence, finite ? input : world::player_input{0.0f, 0.0f, 0});
     return {sequence, input.thrust, input.turn, input.buttons, delta_ack(), {}};
 }
 

@@ -1,5 +1,6 @@
 #include "server/server_run.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -65,6 +66,13 @@ int run_server(const cli::server_setup& setup) {
     if (setup.web) host.add(std::make_unique<net::web_transport>(host, *setup.web, host.http_handlers()));
     host.start();
     host.run();
+    // The match is over and the process on its way out (stats, the recording, the exit): a
+    // repeated signal (a supervisor's second SIGTERM) must not end it now with the signal's
+    // status, as it could once the host's signal handling is gone. Blocked, it stays pending.
+    sigset_t late;
+    sigemptyset(&late);
+    for (const int signo : {SIGINT, SIGTERM, SIGHUP, SIGUSR1}) sigaddset(&late, signo);
+    pthread_sigmask(SIG_BLOCK, &late, nullptr);
     host::log_line("stopped after %u ticks", host.current_tick());
     if (const uint64_t n = protocol::non_finite_values_replaced(); n > 0)  // protocol/snapshot.hpp
         host::log_line("error: the world diverged: %llu non-finite values were sent as 0 (check the world config)",
