@@ -9,7 +9,11 @@
 //
 // The second copy goes once the smoothed loss is above 1 %. A smoothing over about 300
 // snapshots (15 s at 20 Hz) needs several losses to get there: a single loss counts 0.33 %, so a
-// link losing 0.2 % stays at one copy, and one losing 5 % gets its copies within seconds. While
+// link losing 0.2 % stays at one copy. A new client's estimate starts at the threshold, not at
+// zero: nothing is known of its link yet, so its first loss brings the copies (at 5 % loss,
+// after about 20 snapshots, one second) while a clean link decays to zero and never sends one.
+// Starting from zero, a 5 % link would lose some 3 snapshots in 67 before its copies came,
+// which alone puts more than 1 % of an 8-second session's gaps at two intervals. While
 // each snapshot goes twice, the acks say little about one datagram's loss (a snapshot is lost
 // only when both copies are, p^2), so the copies go for a fixed stretch (600 snapshots, 30 s),
 // extended by each snapshot lost even so; then one copy again, the estimate starting at the
@@ -30,7 +34,7 @@ struct snapshot_loss_limits {
 
 class snapshot_loss {
 public:
-    explicit snapshot_loss(snapshot_loss_limits limits = {}) : limits_(limits) {}
+    explicit snapshot_loss(snapshot_loss_limits limits = {}) : limits_(limits), snapshot_loss_(limits.copy_above) {}
 
     // A snapshot of `tick` went to the client (its first copy); ticks increase.
     void sent(uint32_t tick);
@@ -53,7 +57,7 @@ private:
     std::array<uint32_t, 64> sent_{};
     uint64_t sent_count_ = 0;
     uint32_t last_ack_ = 0;
-    double snapshot_loss_ = 0;  // smoothed: the fraction of snapshots sent once that did not arrive
+    double snapshot_loss_;  // smoothed: the fraction of snapshots sent once that did not arrive
     uint64_t samples_ = 0;
     uint32_t copies_ = 1;
     uint32_t twice_left_ = 0;  // while copies_ is 2: snapshots still to send twice

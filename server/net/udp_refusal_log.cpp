@@ -14,7 +14,7 @@ constexpr std::array<reason_words, udp_refusal_reasons> reasons = {{
     {"rate", "over its address's connect rate"},
     {"peer_limit", "every peer slot is taken"},
     {"connect_key", "a connect without this server's connect key"},
-    {"half_open", "its address holds its share of half-open handshakes"},
+    {"half_open", "no slot free, and its address holds the most half-open handshakes"},
     {"before_hello", "a fragment or a queued command before Hello"},
     {"fragment", "fragments their length does not need"},
 }};

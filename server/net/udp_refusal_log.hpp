@@ -18,7 +18,7 @@ enum class udp_refusal : std::uint8_t {
     rate,          // a connect over its address's rate
     peer_limit,    // a connect while every ENet peer slot is taken
     connect_key,   // a connect without the server's connect key (only with a token secret)
-    half_open,     // a connect from an address already holding its budget of half-open handshakes
+    half_open,     // no slot free, and the address holds the most half-open handshakes
     before_hello,  // to a peer that said no Hello: a fragment or a command ENet would hold
     fragment,      // a fragment claiming more fragments or bytes than its length allows
 };

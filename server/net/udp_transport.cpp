@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "protocol/version.hpp"
 #include "server/auth/join_token.hpp"
@@ -203,7 +205,7 @@ bool udp_transport::admit(ENetHost* host) {
             break;
     }
     // ENet drops a connect it has no slot for without a word: say so here.
-    if (auto why = slot_refusal(host, host->receivedAddress)) return refuse(*why, address);
+    if (auto why = make_room_for_connect(host, host->receivedAddress)) return refuse(*why, address);
     return true;
 }
 
@@ -258,23 +260,48 @@ bool udp_transport::refuse(udp_refusal why, const std::string& address) {
     return false;
 }
 
-std::optional<udp_refusal> udp_transport::slot_refusal(const ENetHost* host, const ENetAddress& from) const {
+std::optional<udp_refusal> udp_transport::make_room_for_connect(ENetHost* host, const ENetAddress& from) {
     // ENet's own rule for a connect (enet_protocol_handle_connect): a disconnected slot, and
-    // fewer than duplicatePeers slots already held by the same host. Ours on top: fewer than
-    // half_open_per_address of them half-open.
+    // fewer than duplicatePeers slots already held by the same host. Ours on top: when no slot
+    // is free, a half-open handshake gives its slot up, as a waiting TCP connection does
+    // (admission.cpp): players behind one address may connect all at once while there is
+    // room, and handshakes left half-open from any number of spoofed addresses cannot keep an
+    // honest connect out, since they are always the ones holding the most.
     bool free_slot = false;
-    size_t same_host = 0, half_open = 0;
+    size_t same_host = 0;
+    std::unordered_map<enet_uint32, uint32_t> half_open_by_host;
     for (size_t i = 0; i < host->peerCount; ++i) {
         const ENetPeer& peer = host->peers[i];
         if (peer.state == ENET_PEER_STATE_DISCONNECTED) {
             free_slot = true;
-        } else if (peer.state != ENET_PEER_STATE_CONNECTING && peer.address.host == from.host) {
-            ++same_host;
-            half_open += peer.state == ENET_PEER_STATE_ACKNOWLEDGING_CONNECT ? 1 : 0;
+            continue;
+        }
+        if (peer.state == ENET_PEER_STATE_ACKNOWLEDGING_CONNECT) ++half_open_by_host[peer.address.host];
+        if (peer.state != ENET_PEER_STATE_CONNECTING && peer.address.host == from.host) ++same_host;
+    }
+    if (same_host >= host->duplicatePeers) return udp_refusal::peer_limit;
+    if (free_slot) return std::nullopt;
+    if (half_open_by_host.empty()) return udp_refusal::peer_limit;  // every slot holds a connection
+    const auto most = std::max_element(half_open_by_host.begin(), half_open_by_host.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    const auto own = half_open_by_host.find(from.host);
+    if (own != half_open_by_host.end() && own->second >= most->second) return udp_refusal::half_open;
+    // The oldest of that address's half-open handshakes (one not yet seen by the reaper counts
+    // as new).
+    ENetPeer* oldest = nullptr;
+    int64_t oldest_since = std::numeric_limits<int64_t>::max();
+    for (size_t i = 0; i < host->peerCount && i < half_open_.size(); ++i) {
+        ENetPeer& peer = host->peers[i];
+        if (peer.state != ENET_PEER_STATE_ACKNOWLEDGING_CONNECT || peer.address.host != most->first) continue;
+        const int64_t since =
+            half_open_[i].since_ns < 0 ? std::numeric_limits<int64_t>::max() - 1 : half_open_[i].since_ns;
+        if (oldest == nullptr || since < oldest_since) {
+            oldest = &peer;
+            oldest_since = since;
         }
     }
-    if (half_open >= options_.half_open_per_address) return udp_refusal::half_open;
-    if (!free_slot || same_host >= host->duplicatePeers) return udp_refusal::peer_limit;
+    if (oldest == nullptr) return udp_refusal::peer_limit;
+    enet_peer_reset(oldest);  // never connected: no connection of ours to forget
     return std::nullopt;
 }
 

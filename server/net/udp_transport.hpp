@@ -39,9 +39,10 @@ struct udp_options {
     uint32_t snapshot_copies = 1;
     connect_gate_limits gate{};
     int64_t service_interval_ns = 10'000'000;  // ENet's resends and timeouts
-    // Handshakes not completed (CONNECT answered, VERIFY_CONNECT never acknowledged: what a
-    // spoofed source leaves) per source address; a connect beyond is refused (half_open).
-    uint32_t half_open_per_address = 2;
+    // A handshake not completed (CONNECT answered, VERIFY_CONNECT never acknowledged: what a
+    // spoofed source leaves) holds a slot only while there is room: a connect that finds none
+    // takes the slot of the oldest half-open handshake of the address holding the most, when
+    // that address holds more than the connecting one (else it is refused: half_open).
     // A half-open peer is reset this long after it was first seen (ENet alone keeps it 30 s
     // and sends VERIFY_CONNECT 6 times); its VERIFY_CONNECT is never sent again, so a connect
     // that is not answered gets one 48-byte datagram back for its 52.
@@ -103,9 +104,9 @@ private:
     // A datagram from a peer whose handshake ENet has not seen acknowledged, though the
     // datagram proves it arrived: gets the acknowledgement in front (udp_handshake.hpp).
     void acknowledge_proven_handshake(ENetHost* host);
-    // Whether a connect from `from` may take a peer slot: free slot, address's peers and its
-    // half-open handshakes under their limits; the refusal otherwise.
-    std::optional<udp_refusal> slot_refusal(const ENetHost* host, const ENetAddress& from) const;
+    // Whether a connect from `from` may take a peer slot (a free one, or one a half-open
+    // handshake gives up to it, reset here); the refusal otherwise.
+    std::optional<udp_refusal> make_room_for_connect(ENetHost* host, const ENetAddress& from);
     // The refusal of a datagram to a peer by its commands (udp_peer_commands.hpp), if any.
     std::optional<udp_refusal> peer_commands_refusal(ENetHost* host);
     // Resets the peers whose handshake stayed half-open for half_open_timeout_ns, and keeps

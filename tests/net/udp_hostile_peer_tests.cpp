@@ -132,6 +132,38 @@ TEST_CASE("half-open handshakes from ten addresses keep no honest UDP client out
     std::remove(stats_path.c_str());
 }
 
+TEST_CASE("sixteen UDP clients behind one address connecting at once are all answered", "[net][udp]") {
+    // Players behind one NAT: their handshakes are half-open together for a round trip. While
+    // there is room, none is refused (a limit of two half-open per address answered two).
+    udp_server server({"--max-connections", "40"});
+    std::vector<std::unique_ptr<raw_udp_socket>> players;
+    for (int i = 0; i < 16; ++i) players.push_back(std::make_unique<raw_udp_socket>(server.udp_port));
+    uint32_t connect_id = 0x1000;
+    for (auto& p : players) p->send(enet_connect_datagram(connect_id++));
+    int answered = 0;
+    for (auto& p : players) answered += p->receive(1000ms).has_value() ? 1 : 0;
+    CHECK(answered == 16);
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
+TEST_CASE("with every UDP slot half-open, a connect from another address takes the oldest one's slot at once",
+          "[net][udp][hostile]") {
+    udp_server server({"--max-connections", "4"});
+    raw_udp_socket spoofer_a(server.udp_port, "127.0.0.2");
+    raw_udp_socket spoofer_b(server.udp_port, "127.0.0.3");
+    for (uint32_t id = 1; id <= 4; ++id) spoofer_a.send(enet_connect_datagram(id));
+    std::this_thread::sleep_for(100ms);
+    // Full: a fifth from the same address is refused; one from an address holding fewer gets in.
+    spoofer_a.send(enet_connect_datagram(5));
+    spoofer_b.send(enet_connect_datagram(6));
+    CHECK(spoofer_b.receive(500ms).has_value());
+    // Well before the 1 s reset: the honest client takes another spoofed slot the same way.
+    udp_client honest(server.udp_port, 500ms);
+    CHECK(joins(honest, "beside-the-spoof"));
+    CHECK(server.process.log_shows("udp: refused a datagram from 127.0.0.2: no slot free", 500ms));
+    CHECK(server.process.stop(SIGTERM) == 0);
+}
+
 TEST_CASE("a UDP connect never answered gets back no more bytes than it sent, and its slot is freed",
           "[net][udp][hostile]") {
     // One peer slot: the half-open peer holds it until it is reset.
