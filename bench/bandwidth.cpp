@@ -103,7 +103,7 @@ void run(uint32_t players, float view_radius, bool delta, uint32_t ticks, bool g
     match::match_config config;
     config.tick_rate = 60;
     config.snapshot_rate = 20;
-    config.max_players = players;
+    config.admission.max_players = players;
     config.view_radius = view_radius;
     config.seed = 7;
     world::world_config world_config = world::asteroids_preset();

@@ -71,9 +71,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         ->check(CLI::Range(1, 1000));
     app.add_option("--snapshot-rate", options.match.snapshot_rate, "snapshots per second (default 20)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--max-players", options.match.max_players, "players at once (default 64)")
+    app.add_option("--max-players", options.match.admission.max_players, "players at once (default 64)")
         ->check(CLI::Range(1, 100000));
-    app.add_option("--max-spectators", options.match.max_spectators,
+    app.add_option("--max-spectators", options.match.admission.max_spectators,
                    "spectators at once, besides the players (default 16; 0: none)")
         ->check(CLI::Range(0, 100000));
     app.add_option("--preset", preset,
@@ -95,7 +95,7 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     app.add_option("--stats-json", options.stats_json, "write the run's figures to FILE at exit");
     app.add_option("--input-buffer", options.match.input_buffer, "inputs buffered per player (default 8)")
         ->check(CLI::Range(1, 1024));
-    app.add_option("--max-inputs-per-second", options.match.max_inputs_per_second,
+    app.add_option("--max-inputs-per-second", options.match.admission.max_inputs_per_second,
                    "inputs per second before a client is dropped (default 2 x tick rate + 10)");
     app.add_option("--handshake-timeout", handshake_s, "seconds a new connection has to send Hello (default 5)")
         ->check(CLI::PositiveNumber & cli::finite_non_negative);
@@ -107,9 +107,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     app.add_option("--socket-send-buffer", options.socket_send_buffer,
                    "kernel send buffer per client, bytes (default 262144)")
         ->check(CLI::Range(4096, 64 << 20));
-    app.add_option("--max-connections", options.max_connections,
+    app.add_option("--max-connections", options.match.admission.max_connections,
                    "open connections at once (default 2 x max players + max spectators + 16)");
-    app.add_option("--max-pending-handshakes", options.max_pending_handshakes,
+    app.add_option("--max-pending-handshakes", options.match.admission.max_pending_handshakes,
                    "connections that have not sent Hello yet; when all are taken a new one takes the slot of the "
                    "oldest from the busiest address (default 0: max players + 16, at least 64)");
     app.add_option("--stats-interval", options.stats_interval_s, "seconds between stats log lines (default 5)")
@@ -166,9 +166,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         }
         options.token_secret = std::get<auth::token_secret>(std::move(secret));
     }
-    options.handshake_timeout_ns = static_cast<int64_t>(handshake_s * 1e9);
+    options.match.admission.handshake_timeout = std::chrono::nanoseconds(static_cast<int64_t>(handshake_s * 1e9));
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
-    options.idle_timeout_ns = static_cast<int64_t>(idle_s * 1e9);
+    options.match.admission.idle_timeout = std::chrono::nanoseconds(static_cast<int64_t>(idle_s * 1e9));
 
     if (!choose_world(preset, config_file, rules_name, out)) return 2;
 

@@ -23,16 +23,6 @@ double ms(int64_t ns) {
     return static_cast<double>(ns) / 1e6;
 }
 
-// The match's configuration: its own, and the admission limits the server's flags set.
-match::match_config match_config_of(const host_options& o) {
-    match::match_config c = o.match;
-    c.max_connections = o.max_connections;
-    c.max_pending_handshakes = o.max_pending_handshakes;
-    c.handshake_timeout_s = static_cast<double>(o.handshake_timeout_ns) / 1e9;
-    c.idle_timeout_s = static_cast<double>(o.idle_timeout_ns) / 1e9;
-    return c;
-}
-
 // With --token-secret, a token must be signed with it and unexpired (the wall clock is read
 // here, outside the match).
 match::token_check token_check_of(const host_options& o) {
@@ -64,7 +54,7 @@ const char* signal_reason(int signo) {
 process_host::process_host(const host_options& options, const world::world_config& world_config,
                            const ops::ops_options& ops)
     : options_(options),
-      match_(match_config_of(options), world_config, server_logger(), token_check_of(options)),
+      match_(options.match, world_config, server_logger(), token_check_of(options)),
       clock_(1'000'000'000LL / options.match.tick_rate, options.max_catch_up),
       tick_timer_(io_),
       stop_timer_(io_),
@@ -96,7 +86,7 @@ void process_host::start() {
     watch_signals();
     for (auto& t : transports_) t->start();  // each prints its "listening on HOST:PORT"
     log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.match.tick_rate,
-             options_.match.snapshot_rate, options_.match.max_players, match_.state().bodies().size());
+             options_.match.snapshot_rate, options_.match.admission.max_players, match_.state().bodies().size());
     warn_about_descriptor_limit();
     started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
     boost::asio::co_spawn(io_, tick_loop(), boost::asio::detached);

@@ -14,14 +14,10 @@ namespace arena::host {
 struct host_options {
     std::string bind = "127.0.0.1";  // the address every transport listens on
     match::match_config match{};
-    double duration_s = 0;                         // 0: run until a signal
-    std::string stats_json;                        // written at exit when set
-    uint32_t max_connections = 0;                  // 0: 2 × max_players + max_spectators + 16
-    uint32_t max_pending_handshakes = 0;           // not sent Hello yet; 0: max_players + 16, at least 64
-    int64_t handshake_timeout_ns = 5'000'000'000;  // Hello must arrive within this
-    int64_t idle_timeout_ns = 5'000'000'000;       // a joined client's Inputs must not pause longer; 0: never
-    int64_t stall_timeout_ns = 5'000'000'000;      // output stuck this long drops the client
-    uint32_t max_control_frames = 64;              // queued control messages per client
+    double duration_s = 0;                     // 0: run until a signal
+    std::string stats_json;                    // written at exit when set
+    int64_t stall_timeout_ns = 5'000'000'000;  // output stuck this long drops the client
+    uint32_t max_control_frames = 64;          // queued control messages per client
     // Kernel send buffer per client, bytes: bounds the memory a client that does not read can
     // hold in the kernel (Linux would otherwise grow it to 4 MiB each) and lets a stall show.
     int socket_send_buffer = 256 * 1024;

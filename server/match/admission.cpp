@@ -1,20 +1,38 @@
 #include "server/match/admission.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "protocol/player_name.hpp"
 #include "protocol/version.hpp"
+#include "server/world/assert.hpp"
 
 namespace arena::match {
 
 using protocol::Payload;
 using protocol::RejectCode;
 
-admission::admission(const admission_limits& limits, token_check check_token)
-    : limits_(limits), check_token_(std::move(check_token)) {}
+namespace {
+
+// Whole ticks covering `d`, at least one.
+uint32_t ticks_covering(std::chrono::nanoseconds d, uint16_t tick_rate) {
+    const double ticks = std::ceil(std::chrono::duration<double>(d).count() * tick_rate);
+    return std::max<uint32_t>(1, static_cast<uint32_t>(ticks));
+}
+
+}  // namespace
+
+admission::admission(const admission_limits& limits, uint16_t tick_rate, token_check check_token)
+    : limits_(limits),
+      tick_rate_(tick_rate),
+      handshake_timeout_ticks_(ticks_covering(limits.handshake_timeout, tick_rate)),
+      idle_timeout_ticks_(limits.idle_timeout.count() <= 0 ? 0 : ticks_covering(limits.idle_timeout, tick_rate)),
+      check_token_(std::move(check_token)) {
+    ARENA_ASSERT(tick_rate > 0, "the time-outs are counted in ticks");
+}
 
 uint32_t admission::input_limit() const {
-    return limits_.max_inputs_per_second ? limits_.max_inputs_per_second : 2u * limits_.tick_rate + 10u;
+    return limits_.max_inputs_per_second ? limits_.max_inputs_per_second : 2u * tick_rate_ + 10u;
 }
 
 uint32_t admission::connection_limit() const {
@@ -129,7 +147,8 @@ std::variant<admitted_input, rejection> admission::admit_input(client_standing& 
                                                                const protocol::input_msg& input, int64_t arrival_ns,
                                                                uint32_t tick) const {
     const double rate = input_limit();
-    if (!client.inputs.take(arrival_ns, rate, std::max(1.0, rate * limits_.input_burst_s)))
+    if (!client.inputs.take(arrival_ns, rate,
+                            std::max(1.0, rate * std::chrono::duration<double>(limits_.input_burst).count())))
         return rejection{RejectCode::rate_limit, "more than " + std::to_string(input_limit()) + " inputs per second"};
     const world::player_input in{input.thrust, input.turn, input.buttons};
     if (auto problem = world::check_input(in)) return rejection{RejectCode::bad_input, *problem};
@@ -162,11 +181,10 @@ std::optional<rejection> admission::admit_ping(client_standing& client, int64_t 
 }
 
 std::optional<rejection> admission::check_on_tick(const client_standing& client, uint32_t tick) const {
-    if (client.at == client_standing::stage::awaiting_hello &&
-        tick - client.connected_tick >= limits_.handshake_timeout_ticks)
+    if (client.at == client_standing::stage::awaiting_hello && tick - client.connected_tick >= handshake_timeout_ticks_)
         return rejection{RejectCode::timeout, "no Hello within the handshake timeout"};
-    if (client.at == client_standing::stage::joined && limits_.idle_timeout_ticks != 0 &&
-        tick - client.last_input_tick >= limits_.idle_timeout_ticks)
+    if (client.at == client_standing::stage::joined && idle_timeout_ticks_ != 0 &&
+        tick - client.last_input_tick >= idle_timeout_ticks_)
         return rejection{RejectCode::timeout,
                          client.spectator ? "no Ping within the idle timeout" : "no Input within the idle timeout"};
     return std::nullopt;

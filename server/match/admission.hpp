@@ -11,6 +11,7 @@
 // admit_message(), on the Hello in admit_hello(), on who may take which player in
 // admit_join() (admit_spectator() for those who watch), on inputs in admit_input(), on a client's behaviour over time
 // in check_on_tick(). What a rule must remember about one client lives in client_standing.
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -28,20 +29,26 @@
 
 namespace arena::match {
 
+// The limits of who may connect and send what: each lives here and only here, the server's
+// flags set them (server/cli/server_flags.cpp), the match and the transports read them. Every
+// duration is a std::chrono duration; the match counts the time-outs in its ticks
+// (admission's constructor converts them once).
 struct admission_limits {
-    uint16_t tick_rate = 60;                 // ticks per second: time-outs are counted in ticks
-    uint32_t max_players = 64;               // players at once
-    uint32_t max_spectators = 16;            // spectators at once (Hello.spectator), besides the players; 0: none
-    uint32_t max_connections = 0;            // open connections at once; 0: 2 × max_players + max_spectators + 16
-    uint32_t max_pending_handshakes = 0;     // connections that have not sent Hello yet; 0: see pending_limit()
-    uint32_t handshake_timeout_ticks = 300;  // ticks a new connection has to send Hello (5 s at 60 Hz)
-    uint32_t idle_timeout_ticks = 300;       // ticks a joined client may go without an Input; 0: never
-    uint32_t max_name_bytes = 64;            // Hello.name, bytes
-    uint32_t max_token_bytes = 1024;         // Hello.token, bytes
-    uint32_t max_inputs_per_second = 0;      // 0: 2 × tick_rate + 10
-    // Seconds of inputs at the limit a client may send at once: what the kernel holds after the
-    // server (or the network) stood still this long arrives together and must not be refused.
-    double input_burst_s = 5;
+    uint32_t max_players = 64;            // players at once
+    uint32_t max_spectators = 16;         // spectators at once (Hello.spectator), besides the players; 0: none
+    uint32_t max_connections = 0;         // open connections at once; 0: 2 × max_players + max_spectators + 16
+    uint32_t max_pending_handshakes = 0;  // connections that have not sent Hello yet; 0: see pending_limit()
+    std::chrono::nanoseconds handshake_timeout =
+        std::chrono::seconds(5);  // a new connection has this long to send Hello
+    std::chrono::nanoseconds idle_timeout =
+        std::chrono::seconds(5);         // a joined client may go this long without an Input; 0: never
+    uint32_t max_name_bytes = 64;        // Hello.name, bytes
+    uint32_t max_token_bytes = 1024;     // Hello.token, bytes
+    uint32_t max_inputs_per_second = 0;  // 0: 2 × tick_rate + 10
+    // Inputs at the limit a client may send at once, as the time they span: what the kernel
+    // holds after the server (or the network) stood still this long arrives together and must
+    // not be refused.
+    std::chrono::nanoseconds input_burst = std::chrono::seconds(5);
     uint32_t max_pings_per_second = 5;  // a client pings about once a second
     uint32_t ping_burst = 20;           // Pings at once
 };
@@ -110,7 +117,8 @@ struct admitted_input {
 
 class admission {
 public:
-    explicit admission(const admission_limits& limits, token_check check_token = {});
+    // `tick_rate`: the match's ticks per second, in which the time-outs are counted.
+    admission(const admission_limits& limits, uint16_t tick_rate, token_check check_token = {});
 
     // A new connection, when `open` are open (this one included) and `awaiting_hello` of
     // them (this one included) have not said Hello. A new connection always gets in while the
@@ -170,6 +178,9 @@ public:
 
 private:
     admission_limits limits_;
+    uint16_t tick_rate_;
+    uint32_t handshake_timeout_ticks_;  // limits_'s time-outs in ticks (at least 1; idle: 0 is never)
+    uint32_t idle_timeout_ticks_;
     token_check check_token_;
 };
 

@@ -21,30 +21,12 @@ namespace {
 // gone). Events are small: 28 bytes each, a few a second.
 constexpr uint32_t event_memory_s = 10;
 
-admission_limits limits_of(const match_config& c) {
-    admission_limits l;
-    l.tick_rate = c.tick_rate;
-    l.max_players = c.max_players;
-    l.max_spectators = c.max_spectators;
-    l.max_connections = c.max_connections;
-    l.max_pending_handshakes = c.max_pending_handshakes;
-    l.handshake_timeout_ticks =
-        std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(c.handshake_timeout_s * c.tick_rate)));
-    l.idle_timeout_ticks =
-        c.idle_timeout_s <= 0 ? 0
-                              : std::max<uint32_t>(1, static_cast<uint32_t>(std::ceil(c.idle_timeout_s * c.tick_rate)));
-    l.max_name_bytes = c.max_name_bytes;
-    l.max_token_bytes = c.max_token_bytes;
-    l.max_inputs_per_second = c.max_inputs_per_second;
-    return l;
-}
-
 }  // namespace
 
 match::match(const match_config& config, const world::world_config& world_config, logger log, token_check check_token)
     : config_(config),
       log_(std::move(log)),
-      admission_(limits_of(config), std::move(check_token)),
+      admission_(config.admission, config.tick_rate, std::move(check_token)),
       world_(world_config, config.seed),
       rules_(rules::make_rules(world_)),
       world_config_json_(config::config_to_json(world_config)),
@@ -313,7 +295,7 @@ match_counters match::counters() const {
     total.ticks = world_.tick();
     total.players = live_player_count();  // live connections only: bodies in the grace are counted apart
     total.players_in_grace = players_in_grace();
-    total.max_players = config_.max_players;
+    total.max_players = config_.admission.max_players;
     total.spectators = spectators_.size();
     for (const rules::score_line& line : rules_->scoreboard()) {
         total.shots += line.shots;

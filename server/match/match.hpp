@@ -33,19 +33,11 @@
 namespace arena::match {
 
 struct match_config {
-    uint16_t tick_rate = 60;      // ticks per second
-    uint16_t snapshot_rate = 20;  // snapshots per second: a divisor of tick_rate (the Welcome tells it)
-    uint32_t max_players = 64;
-    uint32_t max_spectators = 16;         // spectators at once (Hello.spectator), besides the players; 0: none
-    uint32_t input_buffer = 8;            // inputs waiting per player; more drop the oldest
-    uint32_t max_inputs_per_second = 0;   // 0: 2 × tick_rate + 10
-    uint32_t max_name_bytes = 64;         // Hello.name, bytes
-    uint32_t max_token_bytes = 1024;      // Hello.token, bytes
-    uint32_t max_connections = 0;         // open connections at once; 0: 2 × max_players + max_spectators + 16
-    uint32_t max_pending_handshakes = 0;  // connections that have not sent Hello yet; 0: max_players + 16, at least 64
-    double handshake_timeout_s = 5;       // s a new connection has to send Hello (counted in ticks)
-    double idle_timeout_s = 5;            // s a joined client may go without an Input (in ticks); 0: never
-    std::string preset;                   // name sent in Welcome ("" for a config file)
+    uint16_t tick_rate = 60;       // ticks per second
+    uint16_t snapshot_rate = 20;   // snapshots per second: a divisor of tick_rate (the Welcome tells it)
+    admission_limits admission{};  // players, spectators, connections, time-outs, message limits
+    uint32_t input_buffer = 8;     // inputs waiting per player; more drop the oldest
+    std::string preset;            // name sent in Welcome ("" for a config file)
     uint64_t seed = 1;
     double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all

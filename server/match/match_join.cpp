@@ -71,7 +71,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     }
     world::player_id id;
     if (std::get<join_kind>(verdict) == join_kind::new_player) {
-        if (players_.size() >= config_.max_players) give_up_oldest_in_grace();
+        if (players_.size() >= config_.admission.max_players) give_up_oldest_in_grace();
         id = world::player_id{next_player_id_++};
         players_.emplace(id, player{&c,
                                     admitted.name,

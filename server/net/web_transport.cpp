@@ -44,10 +44,6 @@ std::string describe(const tcp::socket& socket) {
     return endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
 }
 
-double seconds(int64_t ns) {
-    return static_cast<double>(ns) / 1e9;
-}
-
 template <class Body>
 void common_headers(http::response<Body>& response, std::string_view content_type) {
     response.set(http::field::server, "arena-server");
@@ -216,7 +212,7 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
     const host::host_options& game = host_.options();
     // The whole head within the handshake timeout: an upgrade that never completes holds a
     // slot no longer than a TCP client that never says Hello.
-    conn->stream.expires_after(std::chrono::nanoseconds(game.handshake_timeout_ns));
+    conn->stream.expires_after(game.match.admission.handshake_timeout);
     http::request_parser<http::empty_body> parser;
     parser.header_limit(static_cast<uint32_t>(options_.max_request_bytes));
     parser.body_limit(0);  // GET has no body
@@ -241,7 +237,7 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
         const bool said_nothing = buffer.size() == 0 && !parser.got_some();
         if (ec == beast::error::timeout) {
             host::log_line("http: %s: request head not complete within %.1f s", peer.c_str(),
-                           seconds(game.handshake_timeout_ns));
+                           std::chrono::duration<double>(game.match.admission.handshake_timeout).count());
         } else if (ec == http::error::header_limit || ec == http::error::buffer_overflow) {
             host::log_line("http: %s: request head larger than %zu bytes", peer.c_str(), options_.max_request_bytes);
             reply =

@@ -55,7 +55,8 @@ boost::asio::awaitable<void> ws_session::run(request upgrade, std::vector<uint8_
     // of its own: the match's idle timeout and Pings do that, in the protocol.
     beast::get_lowest_layer(ws_).expires_never();
     websocket::stream_base::timeout timeouts{};
-    timeouts.handshake_timeout = std::chrono::nanoseconds(std::min(o.handshake_timeout_ns, o.close_grace_ns));
+    timeouts.handshake_timeout =
+        std::min(o.match.admission.handshake_timeout, std::chrono::nanoseconds(o.close_grace_ns));
     timeouts.idle_timeout = websocket::stream_base::none();
     timeouts.keep_alive_pings = false;
     ws_.set_option(timeouts);

@@ -44,21 +44,21 @@ arena::world::world_config small_world() {
 // Limits small enough for a short input to reach every one of them.
 arena::match::match_config small_limits() {
     arena::match::match_config c;
-    c.max_players = 3;
-    c.max_spectators = 2;
-    c.max_connections = 6;
-    c.max_pending_handshakes = 2;
-    c.handshake_timeout_s = 0.1;
-    c.idle_timeout_s = 0.2;
+    c.admission.max_players = 3;
+    c.admission.max_spectators = 2;
+    c.admission.max_connections = 6;
+    c.admission.max_pending_handshakes = 2;
+    c.admission.handshake_timeout = std::chrono::milliseconds(100);
+    c.admission.idle_timeout = std::chrono::milliseconds(200);
     c.reconnect_grace_s = 0.3;
     return c;
 }
 
 // What must hold whatever the clients sent.
 void check(const arena::match::match& game) {
-    if (game.live_player_count() > game.config().max_players) __builtin_trap();
-    if (game.player_count() > game.config().max_players) __builtin_trap();
-    if (game.spectator_count() > game.config().max_spectators) __builtin_trap();
+    if (game.live_player_count() > game.config().admission.max_players) __builtin_trap();
+    if (game.player_count() > game.config().admission.max_players) __builtin_trap();
+    if (game.spectator_count() > game.config().admission.max_spectators) __builtin_trap();
     if (game.connection_count() > game.rules().connection_limit()) __builtin_trap();
 }
 

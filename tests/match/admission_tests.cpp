@@ -84,8 +84,8 @@ TEST_CASE("messages out of order are refused as bad_request, each with its detai
 
 TEST_CASE("the Hello's limits: version, name and token length, each with its code", "[match][admission]") {
     match::match_config config;
-    config.max_name_bytes = 8;
-    config.max_token_bytes = 16;
+    config.admission.max_name_bytes = 8;
+    config.admission.max_token_bytes = 16;
     match::match m(config, small_world());
     client old, long_name, long_token, fine;
     CHECK(join(m, old, {7, "ann", ""}) == 0);
@@ -125,7 +125,7 @@ TEST_CASE("a token checker decides who the player is, and a refused token is una
 TEST_CASE("full handshake slots: the oldest waiting connection of the busiest address makes room",
           "[match][admission]") {
     match::match_config config;
-    config.max_pending_handshakes = 4;
+    config.admission.max_pending_handshakes = 4;
     match::match m(config, small_world());
     std::vector<client> idle(5, from("10.6.6.6:1000"));
     for (size_t k = 0; k < 4; ++k) REQUIRE(m.connect(idle[k]));
@@ -152,9 +152,9 @@ TEST_CASE("full handshake slots: the oldest waiting connection of the busiest ad
 
 TEST_CASE("idle sockets reopened as they time out keep no player out", "[match][admission]") {
     match::match_config config;
-    config.max_pending_handshakes = 64;
-    config.handshake_timeout_s = 5;
-    config.idle_timeout_s = 0;  // the players here send no Input
+    config.admission.max_pending_handshakes = 64;
+    config.admission.handshake_timeout = std::chrono::seconds(5);
+    config.admission.idle_timeout = {};  // the players here send no Input
     match::match m(config, small_world());
     std::vector<std::unique_ptr<client>> attackers, players;
     auto reopen = [&] {
@@ -189,7 +189,7 @@ TEST_CASE("idle sockets reopened as they time out keep no player out", "[match][
 
 TEST_CASE("200 players connecting at once to a 256-player server all get in", "[match][admission]") {
     match::match_config config;
-    config.max_players = 256;
+    config.admission.max_players = 256;
     match::match m(config, small_world());
     std::vector<client> bots(200, from("127.0.0.1:1"));
     for (auto& b : bots) REQUIRE(m.connect(b));  // the transport accepts before any Hello is read
@@ -201,7 +201,7 @@ TEST_CASE("200 players connecting at once to a 256-player server all get in", "[
 
 TEST_CASE("connections beyond max-connections: waiting ones make room, players never", "[match][admission]") {
     match::match_config config;
-    config.max_connections = 3;
+    config.admission.max_connections = 3;
     match::match m(config, small_world());
     client a, b, c, d, e;
     REQUIRE(join(m, a, hello()) != 0);
@@ -218,7 +218,7 @@ TEST_CASE("connections beyond max-connections: waiting ones make room, players n
 
 TEST_CASE("bodies in the reconnect grace do not keep a new player out: the oldest is given up", "[match][admission]") {
     match::match_config config;
-    config.max_players = 4;
+    config.admission.max_players = 4;
     config.reconnect_grace_s = 10;
     std::vector<std::string> lines;
     match::match m(config, small_world(), match::logger([&](std::string_view l) { lines.emplace_back(l); }));
@@ -245,7 +245,7 @@ TEST_CASE("bodies in the reconnect grace do not keep a new player out: the oldes
 
 TEST_CASE("a joined client that sends no Input is dropped after the idle timeout", "[match][admission]") {
     match::match_config config;
-    config.idle_timeout_s = 0.5;  // 30 ticks at 60 Hz
+    config.admission.idle_timeout = std::chrono::milliseconds(500);  // 30 ticks at 60 Hz
     match::match m(config, small_world());
     client silent, talks, stops;
     REQUIRE(join(m, silent, hello()) != 0);
@@ -338,7 +338,7 @@ TEST_CASE("names that would forge or cut log lines are refused, a Bye reason is 
 
 TEST_CASE("a connection that never says Hello is refused after the handshake timeout, in ticks", "[match][admission]") {
     match::match_config config;
-    config.handshake_timeout_s = 0.5;  // 30 ticks at 60 Hz
+    config.admission.handshake_timeout = std::chrono::milliseconds(500);  // 30 ticks at 60 Hz
     match::match m(config, small_world());
     client slow, quick;
     REQUIRE(m.connect(slow));

@@ -43,8 +43,8 @@ match::match_config make_config(uint32_t max_players = 64, uint32_t max_inputs_p
     match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
-    c.max_players = max_players;
-    c.max_inputs_per_second = max_inputs_per_second;
+    c.admission.max_players = max_players;
+    c.admission.max_inputs_per_second = max_inputs_per_second;
     return c;
 }
 

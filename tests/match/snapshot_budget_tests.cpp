@@ -250,11 +250,11 @@ struct datagram_client : match::connection {
 };
 
 // An Asteroids match at the tests' rates.
-match::match asteroids_match(uint32_t max_players = match::match_config{}.max_players) {
+match::match asteroids_match(uint32_t max_players = match::match_config{}.admission.max_players) {
     match::match_config config;
     config.tick_rate = tick_rate;
     config.snapshot_rate = tick_rate / interval;
-    config.max_players = max_players;
+    config.admission.max_players = max_players;
     world::world_config world = world::asteroids_preset();
     world.rules = world::game_rules::asteroids;
     return match::match(config, world);

@@ -73,8 +73,8 @@ protocol::hello_msg spectator_hello(std::string name = "watcher", std::string to
 // A view radius well below the world's size: a player sees its surroundings, a spectator all.
 match::match_config config_with(uint32_t max_players = 8, uint32_t max_spectators = 16) {
     match::match_config c;
-    c.max_players = max_players;
-    c.max_spectators = max_spectators;
+    c.admission.max_players = max_players;
+    c.admission.max_spectators = max_spectators;
     c.view_radius = 60;
     return c;
 }

@@ -41,7 +41,7 @@ sim_options hunters(link_kind kind, bool delta, std::uint64_t seed) {
 match::match_config asteroids_match(float view_radius) {
     match::match_config config;
     config.preset = "asteroids";
-    config.max_players = 10;
+    config.admission.max_players = 10;
     config.view_radius = view_radius;
     return config;
 }
@@ -63,7 +63,7 @@ TEST_CASE("every client holds the server's scoreboard lines and hears each event
     sim_options o = hunters(kind, datagrams, 91);
     o.up = o.down = lossy(datagrams);
     match::match_config config = asteroids_match(view_radius);
-    config.max_inputs_per_second = 4u * config.tick_rate;  // a lossy stream's bursts (match_sim_tests.cpp)
+    config.admission.max_inputs_per_second = 4u * config.tick_rate;  // a lossy stream's bursts (match_sim_tests.cpp)
     match_sim sim(config, asteroids_rules_world(), o);
 
     // The server's scoreboard and each player's ship after every tick, to compare with what

@@ -27,7 +27,7 @@ paced_run play(double loss, std::uint32_t ticks) {
     match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
-    c.max_players = 16;
+    c.admission.max_players = 16;
     c.preset = "asteroids";
     sim_options o;
     o.kind = link_kind::datagram;

@@ -19,7 +19,7 @@ match::match_config server_flags(float view_radius) {
     match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
-    c.max_players = 64;
+    c.admission.max_players = 64;
     c.preset = "asteroids";
     c.seed = 1;
     c.view_radius = view_radius;

@@ -20,14 +20,14 @@ match::match_config match_config(std::uint32_t players) {
     match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
-    c.max_players = players;
+    c.admission.max_players = players;
     c.preset = "asteroids";
     // The default limit (2 × tick rate + 10 inputs a second, counted by arrival) refuses a
     // well-behaved client on a lossy stream: one segment lost three times stalls the stream
     // for 1.4 s (200 + 400 + 800 ms of retransmission timeouts), and its 84 inputs then arrive
     // at once on top of the second's own. Seen here about once a run at 5 % loss; a limit
     // that allows a stall's burst keeps this test about the network.
-    c.max_inputs_per_second = 4u * c.tick_rate;
+    c.admission.max_inputs_per_second = 4u * c.tick_rate;
     return c;
 }
 

@@ -23,7 +23,7 @@ match::match_config match_config(std::uint32_t players) {
     match::match_config c;
     c.tick_rate = 60;
     c.snapshot_rate = 20;
-    c.max_players = players;
+    c.admission.max_players = players;
     c.preset = "asteroids";
     return c;
 }
