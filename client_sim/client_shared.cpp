@@ -6,16 +6,14 @@
 
 namespace arena::bots {
 
-const world::world_config* client_shared::config_for(const protocol::welcome_info& welcome, std::string& error) {
-    if (config_ && welcome.world_config == config_text_) return &*config_;
+result<const world::world_config*> client_shared::config_for(const protocol::welcome_info& welcome) {
+    using shared = result<const world::world_config*>;
+    if (config_ && welcome.world_config == config_text_) return shared::success(&*config_);
     auto parsed = config::parse_config_json(welcome.world_config);
-    if (auto* e = std::get_if<config::config_error>(&parsed)) {
-        error = e->message;
-        return nullptr;
-    }
-    config_ = std::get<world::world_config>(std::move(parsed));
+    if (!parsed) return shared::failure(std::move(parsed.error));
+    config_ = std::move(parsed.value);
     config_text_ = welcome.world_config;
-    return &*config_;
+    return shared::success(&*config_);
 }
 
 void client_shared::on_joined(const protocol::welcome_info&) {

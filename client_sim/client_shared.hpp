@@ -25,9 +25,9 @@ public:
     const fleet_metrics& metrics() const { return metrics_; }
     flatbuffers::FlatBufferBuilder& encoder() { return encoder_; }
 
-    // The Welcome's world_config parsed once per distinct text (1000 bots share one), or null
-    // with `error` set.
-    const world::world_config* config_for(const protocol::welcome_info& welcome, std::string& error) override;
+    // The Welcome's world_config parsed once per distinct text (1000 bots share one), or why
+    // it does not parse.
+    result<const world::world_config*> config_for(const protocol::welcome_info& welcome) override;
 
     // True once the run is ending: a session that ends now did not end early.
     [[nodiscard]] bool stopping() const { return stopping_; }

@@ -73,11 +73,11 @@ int parse_options(int argc, char** argv, options& out) {
     }
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
-        if (auto* e = std::get_if<auth::token_error>(&secret)) {
-            std::fprintf(stderr, "arena-bots: --token-secret: %s\n", e->reason.c_str());
+        if (!secret) {
+            std::fprintf(stderr, "arena-bots: --token-secret: %s\n", secret.error.c_str());
             return 2;
         }
-        out.token_secret = std::get<auth::token_secret>(std::move(secret));
+        out.token_secret = std::move(secret.value);
     }
     // IsMember has checked both names.
     out.behavior = *parse_behavior(behavior_name);

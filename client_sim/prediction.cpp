@@ -1,9 +1,9 @@
 #include "client_sim/prediction.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
+#include "server/world/assert.hpp"
 #include "server/world/broadphase.hpp"
 
 namespace arena::bots {
@@ -55,7 +55,7 @@ void predictor::step_predicted(std::uint32_t sequence, const world::player_input
 }
 
 void predictor::on_input(std::uint32_t sequence, const world::player_input& input) {
-    assert(sequence == last_sequence_ + 1 && "inputs are numbered 1, 2, 3, ... without gaps");
+    ARENA_ASSERT(sequence == last_sequence_ + 1, "inputs are numbered 1, 2, 3, ... without gaps");
     last_sequence_ = sequence;
     if (pending_.size() >= max_pending) {
         pending_.erase(pending_.begin());

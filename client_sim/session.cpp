@@ -103,13 +103,13 @@ protocol::Payload session::on_welcome(const protocol::Message& message) {
                     std::to_string(world::world_version));
     if (w.tick_rate == 0 || w.snapshot_rate == 0) return fail("Welcome: tick_rate and snapshot_rate must be positive");
     if (configs_ != nullptr) {
-        std::string error;
-        config_ = configs_->config_for(w, error);
-        if (config_ == nullptr) return fail("Welcome: world_config: " + error);
+        const auto shared = configs_->config_for(w);
+        if (!shared) return fail("Welcome: world_config: " + shared.error);
+        config_ = shared.value;
     } else {
         auto parsed = config::parse_config_json(w.world_config);
-        if (auto* e = std::get_if<config::config_error>(&parsed)) return fail("Welcome: world_config: " + e->message);
-        config_ = &own_config_.emplace(std::get<world::world_config>(std::move(parsed)));
+        if (!parsed) return fail("Welcome: world_config: " + parsed.error);
+        config_ = &own_config_.emplace(std::move(parsed.value));
     }
     welcome_ = std::move(decoded.value);
     player_id_ = welcome_.player_id;

@@ -26,6 +26,7 @@
 #include "protocol/messages.hpp"
 #include "protocol/shapes.hpp"
 #include "server/world/config.hpp"
+#include "server/world/result.hpp"
 
 namespace arena::bots {
 
@@ -45,8 +46,8 @@ struct own_bullet {
 // one among many sessions (client_shared: 1000 bots parse it once).
 class config_source {
 public:
-    // The config, or null with `error` set.
-    virtual const world::world_config* config_for(const protocol::welcome_info& welcome, std::string& error) = 0;
+    // The config (never null), or why there is none.
+    virtual result<const world::world_config*> config_for(const protocol::welcome_info& welcome) = 0;
 
 protected:
     ~config_source() = default;

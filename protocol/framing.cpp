@@ -1,9 +1,9 @@
 #include "protocol/framing.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cstring>
 
+#include "server/world/assert.hpp"
 #include "server/world/little_endian.hpp"
 
 namespace arena::protocol {
@@ -36,7 +36,7 @@ std::span<std::uint8_t> frame_reader::next_buffer() noexcept {
 
 void frame_reader::commit(std::size_t n) {
     const std::size_t room = next_buffer().size();
-    assert(n <= room && "commit() of more bytes than next_buffer() offered");
+    ARENA_ASSERT(n <= room, "commit() of more bytes than next_buffer() offered");
     filled_ += std::min(n, room);
     if (state_ == state::need_prefix && filled_ == frame_prefix_size) {
         on_prefix_complete();

@@ -1,10 +1,10 @@
 #include "protocol/snapshot.hpp"
 
 #include <atomic>
-#include <cassert>
 #include <cmath>
 
 #include "protocol/messages.hpp"
+#include "server/world/assert.hpp"
 
 namespace arena::protocol {
 namespace {
@@ -158,7 +158,7 @@ std::span<const std::uint8_t> snapshot_encoder::frame() const noexcept {
 }
 
 void snapshot_encoder::copy_with_ack(std::uint32_t ack_sequence, std::vector<std::uint8_t>& out) const {
-    assert(built_ && "copy_with_ack() before build()");
+    ARENA_ASSERT(built_, "copy_with_ack() before build()");
     const auto source = frame();
     out.assign(source.begin(), source.end());
     if (out.empty()) return;
@@ -166,7 +166,7 @@ void snapshot_encoder::copy_with_ack(std::uint32_t ack_sequence, std::vector<std
     auto* message = GetMutableSizePrefixedMessage(out.data());
     auto* snapshot = static_cast<Snapshot*>(message->mutable_payload());
     [[maybe_unused]] const bool patched = snapshot->mutate_ack_sequence(ack_sequence);
-    assert(patched && "ack_sequence missing: ForceDefaults not in effect");
+    ARENA_ASSERT(patched, "ack_sequence missing: ForceDefaults not in effect");
 }
 
 std::vector<std::uint8_t> snapshot_encoder::frame_with_ack(std::uint32_t ack_sequence) const {

@@ -176,11 +176,11 @@ int main(int argc, char** argv) {
         world::world_config config;
         if (!config_file.empty()) {
             auto loaded = config::load_config_file(config_file);
-            if (auto* e = std::get_if<config::config_error>(&loaded)) {
-                std::fprintf(stderr, "arena-sim: %s\n", e->message.c_str());
+            if (!loaded) {
+                std::fprintf(stderr, "arena-sim: %s\n", loaded.error.c_str());
                 return 2;
             }
-            config = std::get<world::world_config>(loaded);
+            config = std::move(loaded.value);
         } else if (preset == "pyramid") {
             config = world::pyramid_preset(base);
         } else if (auto p = world::preset_by_name(preset)) {

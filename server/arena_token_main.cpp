@@ -45,11 +45,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     auto secret = arena::auth::token_secret::load(secret_path);
-    if (auto* e = std::get_if<arena::auth::token_error>(&secret)) {
-        std::fprintf(stderr, "arena-token: %s\n", e->reason.c_str());
+    if (!secret) {
+        std::fprintf(stderr, "arena-token: %s\n", secret.error.c_str());
         return 2;
     }
-    const auto& signer = std::get<arena::auth::token_secret>(secret);
+    const auto& signer = secret.value;
     if (connect_key) {
         std::printf("%u\n", signer.connect_key(arena::auth::unix_now()));
         return 0;

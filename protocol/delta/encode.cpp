@@ -2,13 +2,13 @@
 // class's values are, to pick each class's Exp-Golomb order; the second writes the bits.
 #include <array>
 #include <bit>
-#include <cassert>
 #include <cstdint>
 
 #include "protocol/delta/bits.hpp"
 #include "protocol/delta/codec.hpp"
 #include "protocol/delta/format.hpp"
 #include "protocol/delta/records.hpp"
+#include "server/world/assert.hpp"
 
 namespace arena::protocol::delta {
 namespace {
@@ -73,9 +73,9 @@ std::uint64_t emit_added(Sink& s, view cur, view base) {
 }  // namespace
 
 void encode(view current, std::optional<view> baseline, elapsed_time elapsed, std::vector<std::uint8_t>& out) {
-    assert(strictly_sorted(current) && "views are sorted by strictly increasing id");
-    assert((!baseline || strictly_sorted(*baseline)) && "views are sorted by strictly increasing id");
-    assert(elapsed.tick_rate > 0);
+    ARENA_ASSERT(strictly_sorted(current), "views are sorted by strictly increasing id");
+    ARENA_ASSERT(!baseline || strictly_sorted(*baseline), "views are sorted by strictly increasing id");
+    ARENA_ASSERT(elapsed.tick_rate > 0, "a tick rate to convert ticks into seconds");
     const view base = baseline ? *baseline : view{};
 
     stats_sink stats;

@@ -1,12 +1,12 @@
 #include "protocol/delta/shared_encoder.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <optional>
 #include <utility>
 
 #include "protocol/delta/bits.hpp"
 #include "protocol/delta/records.hpp"
+#include "server/world/assert.hpp"
 
 namespace arena::protocol::delta {
 namespace {
@@ -66,7 +66,7 @@ void put_record(bit_writer& w, const std::vector<std::uint64_t>& pool, std::uint
 }  // namespace
 
 void shared_encoder::prepare(view state, std::optional<view> baseline_state, elapsed_time elapsed) {
-    assert(elapsed.tick_rate > 0);
+    ARENA_ASSERT(elapsed.tick_rate > 0, "a tick rate to convert ticks into seconds");
     state_ = state;
     base_ = baseline_state;
     elapsed_ = elapsed;
@@ -236,7 +236,7 @@ void shared_encoder::encode_chosen(std::span<const std::uint32_t> current, std::
                                    std::span<const std::uint32_t> baseline, std::span<const held_body> baseline_held,
                                    std::vector<std::uint32_t>& sent, std::vector<held_body>& held,
                                    std::vector<std::uint8_t>& out) {
-    assert(chosen.size() == current.size());
+    ARENA_ASSERT(chosen.size() == current.size(), "a baseline chosen for every body in view");
     touches_.clear();
     added_indices_.clear();
     own_changes_.clear();

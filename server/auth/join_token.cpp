@@ -36,21 +36,22 @@ std::optional<std::string> from_base64url(std::string_view text) {
 
 }  // namespace
 
-std::variant<token_secret, token_error> token_secret::from_bytes(std::string bytes) {
-    if (sodium_init() < 0) return token_error{"libsodium failed to initialise"};
+result<token_secret> token_secret::from_bytes(std::string bytes) {
+    using made = result<token_secret>;
+    if (sodium_init() < 0) return made::failure("libsodium failed to initialise");
     if (bytes.size() < min_secret_bytes)
-        return token_error{"the secret has " + std::to_string(bytes.size()) + " bytes; at least " +
-                           std::to_string(min_secret_bytes) + " are needed"};
-    return token_secret(std::move(bytes));
+        return made::failure("the secret has " + std::to_string(bytes.size()) + " bytes; at least " +
+                             std::to_string(min_secret_bytes) + " are needed");
+    return made::success(token_secret(std::move(bytes)));
 }
 
-std::variant<token_secret, token_error> token_secret::load(const std::string& path) {
+result<token_secret> token_secret::load(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) return token_error{path + ": cannot open the token secret"};
+    if (!in) return result<token_secret>::failure(path + ": cannot open the token secret");
     std::ostringstream bytes;
     bytes << in.rdbuf();
     auto secret = from_bytes(bytes.str());
-    if (auto* e = std::get_if<token_error>(&secret)) e->reason = path + ": " + e->reason;
+    if (!secret) secret.error = path + ": " + secret.error;
     return secret;
 }
 
@@ -68,30 +69,33 @@ std::string token_secret::mint(std::string_view name, int64_t expires) const {
     return body + "." + to_base64url(mac(body));
 }
 
-std::variant<token_claims, token_error> token_secret::verify(std::string_view token, int64_t now) const {
+result<token_claims> token_secret::verify(std::string_view token, int64_t now) const {
+    using refused = result<token_claims>;
     const size_t last_dot = token.rfind('.');
-    if (last_dot == std::string_view::npos) return token_error{"malformed token"};
+    if (last_dot == std::string_view::npos) return refused::failure("malformed token");
     const std::string_view body = token.substr(0, last_dot);
     const auto given_mac = from_base64url(token.substr(last_dot + 1));
     const std::string expected = mac(body);
     // Constant-time comparison: a mismatch position must not leak through timing.
     if (!given_mac || given_mac->size() != expected.size() ||
         sodium_memcmp(given_mac->data(), expected.data(), expected.size()) != 0)
-        return token_error{"token signature does not match this server's secret"};
+        return refused::failure("token signature does not match this server's secret");
     // The signature is ours, so the body has the shape we wrote.
     const size_t first = body.find('.'), second = body.find('.', first + 1);
-    if (body.substr(0, first) != version_tag || second == std::string_view::npos) return token_error{"malformed token"};
+    if (body.substr(0, first) != version_tag || second == std::string_view::npos)
+        return refused::failure("malformed token");
     const auto name = from_base64url(body.substr(first + 1, second - first - 1));
-    if (!name) return token_error{"malformed token"};
+    if (!name) return refused::failure("malformed token");
     token_claims claims{*name, 0};
     try {
         claims.expires = std::stoll(std::string(body.substr(second + 1)));
     } catch (const std::exception&) {
-        return token_error{"malformed token"};
+        return refused::failure("malformed token");
     }
     if (claims.expires <= now)
-        return token_error{"token expired at " + std::to_string(claims.expires) + " (now " + std::to_string(now) + ")"};
-    return claims;
+        return refused::failure("token expired at " + std::to_string(claims.expires) + " (now " + std::to_string(now) +
+                                ")");
+    return refused::success(std::move(claims));
 }
 
 std::uint32_t token_secret::connect_key(int64_t unix_seconds) const {

@@ -13,7 +13,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <variant>
+
+#include "server/world/result.hpp"
 
 namespace arena::auth {
 
@@ -25,24 +26,24 @@ struct token_claims {
     int64_t expires = 0;  // Unix seconds
 };
 
-struct token_error {
-    std::string reason;
-};
-
 class token_secret {
 public:
     // Reads the secret from a file: at least 32 bytes (e.g. `head -c 32 /dev/urandom > FILE`).
-    static std::variant<token_secret, token_error> load(const std::string& path);
+    static result<token_secret> load(const std::string& path);
     // For tests and tools: a secret from bytes already in memory (at least 32 bytes).
-    static std::variant<token_secret, token_error> from_bytes(std::string bytes);
+    static result<token_secret> from_bytes(std::string bytes);
 
     std::string mint(std::string_view name, int64_t expires) const;
     // The claims of a valid, unexpired token, or why it is refused.
-    std::variant<token_claims, token_error> verify(std::string_view token, int64_t now) const;
+    result<token_claims> verify(std::string_view token, int64_t now) const;
     // The UDP connect key of the window holding `unix_seconds` (see above).
     std::uint32_t connect_key(int64_t unix_seconds) const;
 
 private:
+    // Only load() and from_bytes() make a usable secret; the empty one exists for result's
+    // value slot, and a failed result's value is never used.
+    friend struct arena::result<token_secret>;
+    token_secret() = default;
     explicit token_secret(std::string key) : key_(std::move(key)) {}
     std::string mac(std::string_view message) const;
     std::string key_;

@@ -22,12 +22,12 @@ namespace {
 bool choose_world(const std::string& preset, const std::string& config_file, const std::string& rules_name,
                   server_setup& out) {
     auto chosen = config::choose_world(preset, config_file, rules_name);
-    if (auto* e = std::get_if<config::config_error>(&chosen)) {
-        std::fprintf(stderr, "arena-server: %s\n", e->message.c_str());
+    if (!chosen) {
+        std::fprintf(stderr, "arena-server: %s\n", chosen.error.c_str());
         return false;
     }
-    out.world = std::get<config::world_choice>(chosen).config;
-    out.host.match.preset = std::get<config::world_choice>(chosen).preset;
+    out.world = chosen.value.config;
+    out.host.match.preset = chosen.value.preset;
     return true;
 }
 
@@ -160,11 +160,11 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     options.close_grace_ns = static_cast<int64_t>(drain_grace_s * 1e9);
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
-        if (auto* e = std::get_if<auth::token_error>(&secret)) {
-            std::fprintf(stderr, "arena-server: --token-secret: %s\n", e->reason.c_str());
+        if (!secret) {
+            std::fprintf(stderr, "arena-server: --token-secret: %s\n", secret.error.c_str());
             return 2;
         }
-        options.token_secret = std::get<auth::token_secret>(std::move(secret));
+        options.token_secret = std::move(secret.value);
     }
     options.match.admission.handshake_timeout = std::chrono::nanoseconds(static_cast<int64_t>(handshake_s * 1e9));
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);

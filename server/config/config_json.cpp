@@ -172,9 +172,8 @@ void read_shape(const json& j, const std::string& path, world::shape_config& s) 
                                 "]' repeats the point before it (a segment needs two distinct points)"};
         return;
     }
-    std::string error;
-    vec2 centre{0, 0};
-    if (!world::make_shape(s, error, centre)) {
+    if (const auto made = world::make_shape(s); !made) {
+        const std::string& error = made.error;
         // The shape's message names its field in quotes: make it the full path.
         const size_t quote = error.find('\'');
         const size_t end = quote == std::string::npos ? quote : error.find('\'', quote + 1);
@@ -383,35 +382,36 @@ world::world_config read_world(const json& j) {
 
 }  // namespace
 
-std::variant<world::world_config, config_error> parse_config_json(std::string_view text) {
+result<world::world_config> parse_config_json(std::string_view text) {
+    using config_result = result<world::world_config>;
     if (text.size() > max_config_bytes)
-        return config_error{"config of " + std::to_string(text.size()) + " bytes; at most " +
-                            std::to_string(max_config_bytes) + " are read"};
+        return config_result::failure("config of " + std::to_string(text.size()) + " bytes; at most " +
+                                      std::to_string(max_config_bytes) + " are read");
     json j;
     try {
         j = json::parse(text);
     } catch (const json::exception& e) {
         // parse_error for bad syntax, out_of_range for a number too large to represent (found
         // by fuzz_config; kept in tests/fuzz/regressions/fuzz_config/).
-        return config_error{std::string("invalid JSON: ") + e.what()};
+        return config_result::failure(std::string("invalid JSON: ") + e.what());
     }
     try {
-        return read_world(j);
+        return config_result::success(read_world(j));
     } catch (const bad_field& e) {
-        return config_error{e.message};
+        return config_result::failure(e.message);
     } catch (const json::exception& e) {
-        return config_error{std::string("invalid config: ") + e.what()};
+        return config_result::failure(std::string("invalid config: ") + e.what());
     }
 }
 
-std::variant<world::world_config, config_error> load_config_file(const std::string& path) {
+result<world::world_config> load_config_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) return config_error{path + ": cannot open"};
+    if (!in) return result<world::world_config>::failure(path + ": cannot open");
     std::ostringstream text;
     text << in.rdbuf();
-    auto result = parse_config_json(text.str());
-    if (auto* e = std::get_if<config_error>(&result)) e->message = path + ": " + e->message;
-    return result;
+    auto parsed = parse_config_json(text.str());
+    if (!parsed) parsed.error = path + ": " + parsed.error;
+    return parsed;
 }
 
 }  // namespace arena::config

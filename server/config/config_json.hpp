@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <variant>
 
 #include "server/world/config.hpp"
+#include "server/world/result.hpp"
 
 namespace arena::config {
 
@@ -29,15 +29,11 @@ inline constexpr uint32_t max_world_bodies = 1u << 20;
 // than it gains.
 inline constexpr uint32_t max_substeps = 8;
 
-struct config_error {
-    std::string message;  // one line: what is wrong and where
-};
-
 // Parses JSON text; `{"preset": "platformer", "gravity": [0, -3]}` starts from a preset.
-std::variant<world::world_config, config_error> parse_config_json(std::string_view text);
+result<world::world_config> parse_config_json(std::string_view text);
 
 // Reads and parses a file; errors name the file.
-std::variant<world::world_config, config_error> load_config_file(const std::string& path);
+result<world::world_config> load_config_file(const std::string& path);
 
 // The game rules a config's "rules" names ("sandbox", "asteroids"), or none for another name.
 std::optional<world::game_rules> rules_by_name(std::string_view name);

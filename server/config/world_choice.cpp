@@ -4,16 +4,16 @@
 
 namespace arena::config {
 
-std::variant<world_choice, config_error> choose_world(const std::string& preset, const std::string& config_file,
-                                                      const std::string& rules) {
+result<world_choice> choose_world(const std::string& preset, const std::string& config_file, const std::string& rules) {
+    using choice = result<world_choice>;
     world_choice chosen;
     if (!config_file.empty()) {
         auto loaded = load_config_file(config_file);
-        if (auto* e = std::get_if<config_error>(&loaded)) return *e;
-        chosen.config = std::get<world::world_config>(std::move(loaded));
+        if (!loaded) return choice::failure(std::move(loaded.error));
+        chosen.config = std::move(loaded.value);
     } else {
         auto world = world::preset_by_name(preset);
-        if (!world) return config_error{"--preset: unknown preset '" + preset + "' (asteroids, platformer)"};
+        if (!world) return choice::failure("--preset: unknown preset '" + preset + "' (asteroids, platformer)");
         chosen.config = std::move(*world);
         // `--preset asteroids` used to play the sandbox's rules: rocks, but no bullets or score.
         chosen.config.rules = *world::preset_rules(preset);
@@ -21,10 +21,10 @@ std::variant<world_choice, config_error> choose_world(const std::string& preset,
     }
     if (!rules.empty()) {
         const auto named = rules_by_name(rules);
-        if (!named) return config_error{"--rules: unknown rules '" + rules + "' (" + rules_names_list() + ")"};
+        if (!named) return choice::failure("--rules: unknown rules '" + rules + "' (" + rules_names_list() + ")");
         chosen.config.rules = *named;
     }
-    return chosen;
+    return choice::success(std::move(chosen));
 }
 
 }  // namespace arena::config

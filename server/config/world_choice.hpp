@@ -3,7 +3,6 @@
 // a config file's world (and its "rules", else the sandbox's), or else the preset's world with
 // the rules the preset is made for; --rules, when given, overrides either.
 #include <string>
-#include <variant>
 
 #include "server/config/config_json.hpp"
 #include "server/world/config.hpp"
@@ -17,7 +16,6 @@ struct world_choice {
 
 // `config_file` "" uses `preset`; `rules` "" keeps the preset's or the config's. An error is
 // one line naming the flag (or the file and its field).
-std::variant<world_choice, config_error> choose_world(const std::string& preset, const std::string& config_file,
-                                                      const std::string& rules);
+result<world_choice> choose_world(const std::string& preset, const std::string& config_file, const std::string& rules);
 
 }  // namespace arena::config

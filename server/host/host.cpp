@@ -29,8 +29,8 @@ match::token_check token_check_of(const host_options& o) {
     if (!o.token_secret) return {};
     return [secret = *o.token_secret](std::string_view token) {
         auto claims = secret.verify(std::string(token), auth::unix_now());
-        if (auto* e = std::get_if<auth::token_error>(&claims)) return match::token_verdict{std::nullopt, e->reason};
-        return match::token_verdict{std::get<auth::token_claims>(claims).name, {}};
+        if (!claims) return result<std::string>::failure(std::move(claims.error));
+        return result<std::string>::success(std::move(claims.value.name));
     };
 }
 

@@ -119,12 +119,13 @@ std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::h
     // Open: the token is the client's own key. A spectator holds no identity: it has nothing
     // to reconnect to and takes nobody over.
     if (!check_token_) return admitted_hello{hello.name, hello.spectator ? "" : hello.token, hello.spectator};
-    token_verdict verdict = check_token_(hello.token);
-    if (!verdict.name) return rejection{RejectCode::unauthorized, std::move(verdict.problem)};
-    if (auto problem = protocol::player_name_problem(*verdict.name, limits_.max_name_bytes))
+    result<std::string> signed_name = check_token_(hello.token);
+    if (!signed_name) return rejection{RejectCode::unauthorized, std::move(signed_name.error)};
+    const std::string& name = signed_name.value;
+    if (auto problem = protocol::player_name_problem(name, limits_.max_name_bytes))
         return rejection{RejectCode::unauthorized, "the token's " + *problem};
     // The signed name is the player's identity, whatever name the Hello claims.
-    return admitted_hello{*verdict.name, hello.spectator ? "" : "signed:" + *verdict.name, hello.spectator};
+    return admitted_hello{name, hello.spectator ? "" : "signed:" + name, hello.spectator};
 }
 
 std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> same_identity_connected,

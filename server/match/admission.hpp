@@ -26,6 +26,7 @@
 #include "server/match/input_buffer.hpp"
 #include "server/match/token_bucket.hpp"
 #include "server/world/input.hpp"
+#include "server/world/result.hpp"
 
 namespace arena::match {
 
@@ -53,14 +54,10 @@ struct admission_limits {
     uint32_t ping_burst = 20;           // Pings at once
 };
 
-// What a signed token says: the name it was minted for, or why it is refused. Checking a
-// signature needs a secret and the wall clock, so the caller hands a checker in; without one
-// the server is open and a token is the client's own opaque key.
-struct token_verdict {
-    std::optional<std::string> name;  // set: a good token for this player name
-    std::string problem;              // otherwise: why not ("token expired")
-};
-using token_check = std::function<token_verdict(std::string_view token)>;
+// What a signed token says: the player name it was minted for, or why it is refused ("token
+// expired"). Checking a signature needs a secret and the wall clock, so the caller hands a
+// checker in; without one the server is open and a token is the client's own opaque key.
+using token_check = std::function<result<std::string>(std::string_view token)>;
 
 // Where one client stands with admission; the match keeps one per connection.
 struct client_standing {

@@ -87,10 +87,8 @@ protocol::result<reader> reader::open(const std::string& path) {
                                        std::to_string(h->tick_rate) +
                                        " Hz) after the world's start: arena-server records from a match's first tick"));
     auto parsed = config::parse_config_json(h->world_config);
-    if (auto* e = std::get_if<config::config_error>(&parsed)) {
-        return r::failure(rd.at(0, "Header: world config: " + e->message));
-    }
-    rd.config_ = std::get<world::world_config>(parsed);
+    if (!parsed) return r::failure(rd.at(0, "Header: world config: " + parsed.error));
+    rd.config_ = std::move(parsed.value);
     if (const std::string changed = world::changed_since(h->world_version, rd.config_); !changed.empty()) {
         return r::failure(rd.at(0, "recorded with world version " + std::to_string(h->world_version) +
                                        ", this build simulates world version " + std::to_string(world::world_version) +

@@ -1,10 +1,12 @@
 #include "server/replay/record_format.hpp"
 
+#include <cstdint>
 #include <cstring>
 
 #include "protocol/player_name.hpp"
 #include "protocol/replay_generated.h"
 #include "server/replay/status.hpp"
+#include "server/world/assert.hpp"
 #include "server/world/fnv1a.hpp"
 #include "server/world/little_endian.hpp"
 
@@ -158,6 +160,7 @@ void record_encoder::append(const end_marker& e, std::vector<uint8_t>& out) {
 }
 
 protocol::result<record> decode_record(std::span<const uint8_t> frame) {
+    ARENA_ASSERT(reinterpret_cast<std::uintptr_t>(frame.data()) % 8 == 0, "a record frame 8-byte aligned");
     using r = protocol::result<record>;
     if (frame.size() < record_prefix_size + min_record_body || frame.size() > record_prefix_size + max_record_body) {
         return r::failure("record of " + std::to_string(frame.size()) + " bytes is outside the valid sizes");

@@ -150,8 +150,8 @@ void asteroids_rules::split_rock(world::world& w, uint32_t id, std::vector<uint3
     if (parent.kind != world::shape_kind::circle) {
         std::vector<vec2> corners;
         for (uint8_t k = 0; k < parent.count; ++k) corners.push_back(parent.vertices[k] * half_area_scale);
-        const world::polygon_result made = world::make_polygon(corners, parent.radius * half_area_scale);
-        if (made.polygon) piece_shape = *made.polygon;
+        const auto made = world::make_polygon(corners, parent.radius * half_area_scale);
+        if (made) piece_shape = made.value.geometry;
     }
     world::body_material m;
     m.mass = r.mass * 0.5f;
@@ -272,8 +272,8 @@ void asteroids_rules::spawn_wave(world::world& w) {
         // One draw per statement: argument evaluation order differs between compilers.
         const real vx = rng_.uniform(-rocks.max_speed, rocks.max_speed);
         const real vy = rng_.uniform(-rocks.max_speed, rocks.max_speed);
-        const world::polygon_result made = world::make_polygon(corners);
-        const world::shape s = made.polygon ? *made.polygon : world::make_circle(radius);
+        const auto made = world::make_polygon(corners);
+        const world::shape s = made ? made.value.geometry : world::make_circle(radius);
         world::body b = world::make_body(rocks.material, s, at);
         b.velocity = {vx, vy};
         const std::optional<uint32_t> id = w.add_body(b, s);

@@ -39,54 +39,35 @@ body make_body(const body_material& material, const shape& s, const vec2& positi
 
 namespace arena::world {
 
-std::optional<shape> make_shape(const shape_config& c, std::string& error, vec2& centre) {
-    centre = {0, 0};
+result<centred_shape> make_shape(const shape_config& c) {
+    using made = result<centred_shape>;
     switch (c.type) {
         case shape_type::circle:
             if (!(c.radius > 0)) break;
-            return make_circle(c.radius);
+            return made::success({make_circle(c.radius)});
         case shape_type::capsule:
             if (!(c.radius > 0)) break;
-            if (!(c.half_length > 0)) {
-                error = "'half_length' must be positive";
-                return std::nullopt;
-            }
-            return make_capsule(c.half_length, c.radius);
+            if (!(c.half_length > 0)) return made::failure("'half_length' must be positive");
+            return made::success({make_capsule(c.half_length, c.radius)});
         case shape_type::box:
-            if (!(c.half_extents.x() > 0 && c.half_extents.y() > 0)) {
-                error = "'half_extents' must be positive";
-                return std::nullopt;
-            }
-            if (!(c.rounding >= 0)) {
-                error = "'rounding' must not be negative";
-                return std::nullopt;
-            }
-            return make_box(c.half_extents.x(), c.half_extents.y(), c.rounding);
+            if (!(c.half_extents.x() > 0 && c.half_extents.y() > 0))
+                return made::failure("'half_extents' must be positive");
+            if (!(c.rounding >= 0)) return made::failure("'rounding' must not be negative");
+            return made::success({make_box(c.half_extents.x(), c.half_extents.y(), c.rounding)});
         case shape_type::polygon: {
-            if (!(c.rounding >= 0)) {
-                error = "'rounding' must not be negative";
-                return std::nullopt;
-            }
-            polygon_result r = make_polygon(c.points, c.rounding);
-            if (!r.polygon) {
-                error = "'points': " + r.error;
-                return std::nullopt;
-            }
-            centre = r.centroid;
-            return r.polygon;
+            if (!(c.rounding >= 0)) return made::failure("'rounding' must not be negative");
+            made polygon = make_polygon(c.points, c.rounding);
+            if (!polygon) polygon.error = "'points': " + polygon.error;
+            return polygon;
         }
         case shape_type::segment:
-            if (c.points.size() != 2 || c.points[0] == c.points[1]) {
-                error = "'points' must be two distinct points";
-                return std::nullopt;
-            }
-            return make_segment(c.points[0], c.points[1]);
+            if (c.points.size() != 2 || c.points[0] == c.points[1])
+                return made::failure("'points' must be two distinct points");
+            return made::success({make_segment(c.points[0], c.points[1])});
         case shape_type::chain:
-            error = "a chain is several bodies";
-            return std::nullopt;
+            return made::failure("a chain is several bodies");
     }
-    error = "'radius' must be positive";
-    return std::nullopt;
+    return made::failure("'radius' must be positive");
 }
 
 }  // namespace arena::world

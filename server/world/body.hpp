@@ -54,10 +54,9 @@ body make_body(const body_material& material, const vec2& position);
 // given mass with the shape's inertia scaled to it. Add it with world::add_body(b, s).
 body make_body(const body_material& material, const shape& s, const vec2& position);
 
-// The shape a config describes (not a chain: world::add_chain makes those), or the reason it
-// cannot be one, naming the config field ("points", "half_extents", ...). `centre` receives
-// its centre of mass in the config's body frame (a polygon's centroid; 0 for the others): the
-// shape is centred on it, and the body goes there.
-std::optional<shape> make_shape(const shape_config& config, std::string& error, vec2& centre);
+// The shape a config describes (not a chain: world::add_chain makes those), centred on its
+// centre of mass, with that centre in the config's body frame; or the reason it cannot be one,
+// naming the config field ("points", "half_extents", ...).
+result<centred_shape> make_shape(const shape_config& config);
 
 }  // namespace arena::world

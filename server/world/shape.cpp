@@ -76,19 +76,14 @@ shape make_segment(const vec2& a, const vec2& b) {
     return s;
 }
 
-polygon_result make_polygon(std::span<const vec2> points, real radius) {
-    polygon_result r;
-    if (points.size() > static_cast<size_t>(max_polygon_vertices)) {
-        r.error = "a polygon has at most 8 vertices, got " + std::to_string(points.size());
-        return r;
-    }
+result<centred_shape> make_polygon(std::span<const vec2> points, real radius) {
+    using made = result<centred_shape>;
+    if (points.size() > static_cast<size_t>(max_polygon_vertices))
+        return made::failure("a polygon has at most 8 vertices, got " + std::to_string(points.size()));
     // Gift wrapping from the lowest-leftmost point: at most 8 points, so O(n²) is nothing, and
     // ties (collinear points) resolve to the farthest point, so the hull has no flat vertices.
     std::vector<vec2> p(points.begin(), points.end());
-    if (p.size() < 3) {
-        r.error = "a polygon needs at least 3 vertices, got " + std::to_string(p.size());
-        return r;
-    }
+    if (p.size() < 3) return made::failure("a polygon needs at least 3 vertices, got " + std::to_string(p.size()));
     size_t start = 0;
     for (size_t i = 1; i < p.size(); ++i) {
         if (p[i].x() < p[start].x() || (p[i].x() == p[start].x() && p[i].y() < p[start].y())) start = i;
@@ -110,10 +105,8 @@ polygon_result make_polygon(std::span<const vec2> points, real radius) {
     real area2 = 0;
     for (size_t i = 0; i < hull.size(); ++i) area2 += cross(hull[i], hull[(i + 1) % hull.size()]);
     const real linear_slop = 0.005f;
-    if (hull.size() < 3 || area2 <= linear_slop * linear_slop) {
-        r.error = "the polygon's vertices have no area (collinear or repeated)";
-        return r;
-    }
+    if (hull.size() < 3 || area2 <= linear_slop * linear_slop)
+        return made::failure("the polygon's vertices have no area (collinear or repeated)");
     shape s;
     s.kind = shape_kind::polygon;
     s.count = static_cast<uint8_t>(hull.size());
@@ -122,9 +115,7 @@ polygon_result make_polygon(std::span<const vec2> points, real radius) {
     const mass_properties m = compute_mass(s, 1);
     for (size_t i = 0; i < hull.size(); ++i) s.vertices[i] -= m.centre;
     set_normals(s);
-    r.centroid = m.centre;
-    r.polygon = s;
-    return r;
+    return made::success({s, m.centre});
 }
 
 mass_properties compute_mass(const shape& s, real density) {

@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 
+#include "server/world/result.hpp"
 #include "server/world/types.hpp"
 
 namespace arena::world {
@@ -68,15 +69,17 @@ shape make_box(real hx, real hy, real radius = 0);
 // A segment from `a` to `b` in the body frame (its body sits at the midpoint: make_segment_at).
 shape make_segment(const vec2& a, const vec2& b);
 
-// A convex polygon from up to 8 points in any order (their convex hull, counter-clockwise),
-// shifted so that its centroid is the origin; `centroid` receives the shift. The reason when
-// the points have no area (fewer than 3 distinct, collinear) or there are more than 8.
-struct polygon_result {
-    std::optional<shape> polygon;
-    vec2 centroid{0, 0};
-    std::string error;
+// A shape centred on its centre of mass, and where that centre lies in the frame the shape was
+// described in (a polygon's centroid; 0 for the others): the body goes there.
+struct centred_shape {
+    shape geometry;
+    vec2 centre{0, 0};
 };
-polygon_result make_polygon(std::span<const vec2> points, real radius = 0);
+
+// A convex polygon from up to 8 points in any order (their convex hull, counter-clockwise),
+// shifted so that its centroid is the origin (`centre`: the shift). The reason when the points
+// have no area (fewer than 3 distinct, collinear) or there are more than 8.
+result<centred_shape> make_polygon(std::span<const vec2> points, real radius = 0);
 
 // Exact for circles, capsules and polygons; a rounded polygon adds its edge strips and corner
 // sectors, exact when its corners are equal (boxes, regular polygons), otherwise the sectors'

@@ -29,10 +29,10 @@ void world::place_bodies() {
             add_chain(points, bc.material);
             continue;
         }
-        std::string error;
-        vec2 centre{0, 0};
-        const std::optional<shape> s = make_shape(bc.shape, error, centre);
-        if (!s) continue;
+        const result<centred_shape> made = make_shape(bc.shape);
+        if (!made) continue;  // the config's loader refused it already, naming the field
+        const shape& s = made.value.geometry;
+        const vec2 centre = made.value.centre;
         body_material material = bc.material;
         const bool is_static = bc.is_static || bc.shape.type == shape_type::segment;
         if (is_static) {
@@ -41,10 +41,10 @@ void world::place_bodies() {
         }
         const cos_sin r = compute_cos_sin(bc.angle);
         const vec2 at = bc.position + vec2{r.c * centre.x() - r.s * centre.y(), r.s * centre.x() + r.c * centre.y()};
-        body b = make_body(material, *s, at);
+        body b = make_body(material, s, at);
         b.angle = wrap_angle(bc.angle);
         if (!is_static) b.velocity = bc.velocity;
-        if (!add_body(b, *s)) return;
+        if (!add_body(b, s)) return;
     }
 }
 
@@ -280,7 +280,9 @@ std::optional<shape> world::irregular_polygon(real radius) {
         const cos_sin at = compute_cos_sin(2 * pi * static_cast<real>(k) / static_cast<real>(n));
         corners.push_back(vec2{at.c, at.s} * distance);
     }
-    return make_polygon(corners).polygon;
+    const result<centred_shape> made = make_polygon(corners);
+    if (!made) return std::nullopt;
+    return made.value.geometry;
 }
 
 template <class IsFree>

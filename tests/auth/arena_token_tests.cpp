@@ -68,7 +68,7 @@ TEST_CASE("arena-token --udp-connect-key prints the server's current connect key
     CHECK(std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }));
     // The key the server derives from the same secret now (or a moment ago, had the window
     // just turned).
-    const auto server_secret = std::get<arena::auth::token_secret>(arena::auth::token_secret::load(secret.path));
+    const auto server_secret = arena::auth::token_secret::load(secret.path).value;
     const int64_t now = arena::auth::unix_now();
     const std::uint64_t printed = std::stoull(digits);
     CHECK((printed == server_secret.connect_key(now) || printed == server_secret.connect_key(now - 5)));

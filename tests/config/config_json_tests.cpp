@@ -11,8 +11,8 @@ namespace {
 
 std::string error_of(std::string_view text) {
     auto r = config::parse_config_json(text);
-    REQUIRE(std::holds_alternative<config::config_error>(r));
-    return std::get<config::config_error>(r).message;
+    REQUIRE(!r.ok());
+    return r.error;
 }
 
 }  // namespace
@@ -20,15 +20,15 @@ std::string error_of(std::string_view text) {
 TEST_CASE("a config survives JSON bit for bit", "[config]") {
     for (const auto& preset : {world::asteroids_preset(), world::platformer_preset()}) {
         auto back = config::parse_config_json(config::config_to_json(preset));
-        REQUIRE(std::holds_alternative<world::world_config>(back));
-        CHECK(world::config_hash(std::get<world::world_config>(back)) == world::config_hash(preset));
+        REQUIRE(back.ok());
+        CHECK(world::config_hash(back.value) == world::config_hash(preset));
     }
 }
 
 TEST_CASE("a config file starts from a preset and overrides fields", "[config]") {
     auto r = config::parse_config_json(R"({"preset": "platformer", "gravity": [0, -3.5], "rocks": {"count": 2}})");
-    REQUIRE(std::holds_alternative<world::world_config>(r));
-    const auto& c = std::get<world::world_config>(r);
+    REQUIRE(r.ok());
+    const auto& c = r.value;
     CHECK(c.gravity.y() == -3.5f);
     CHECK(c.rocks.count == 2);
     CHECK(c.boundary == world::boundary::walls);  // from the preset
@@ -56,25 +56,25 @@ TEST_CASE("a wrong field is named in the error", "[config]") {
 
 TEST_CASE("a missing config file is reported with its path", "[config]") {
     auto r = config::load_config_file("/nonexistent/arena.json");
-    REQUIRE(std::holds_alternative<config::config_error>(r));
-    CHECK(std::get<config::config_error>(r).message.find("/nonexistent/arena.json") != std::string::npos);
+    REQUIRE(!r.ok());
+    CHECK(r.error.find("/nonexistent/arena.json") != std::string::npos);
 }
 
 TEST_CASE("substeps: read, checked, and written only when not 1", "[config][substeps]") {
     auto r = config::parse_config_json(R"({"substeps": 4})");
-    REQUIRE(std::holds_alternative<world::world_config>(r));
-    const auto& c = std::get<world::world_config>(r);
+    REQUIRE(r.ok());
+    const auto& c = r.value;
     CHECK(c.substeps == 4);
     // A sub-stepped config survives JSON, and its hash is not the one-step config's.
     auto back = config::parse_config_json(config::config_to_json(c));
-    REQUIRE(std::holds_alternative<world::world_config>(back));
-    CHECK(std::get<world::world_config>(back).substeps == 4);
-    CHECK(world::config_hash(std::get<world::world_config>(back)) == world::config_hash(c));
+    REQUIRE(back.ok());
+    CHECK(back.value.substeps == 4);
+    CHECK(world::config_hash(back.value) == world::config_hash(c));
     CHECK(world::config_hash(c) != world::config_hash(world::world_config{}));
     // The pyramid preset sub-steps, and survives JSON too.
     auto pyramid = config::parse_config_json(R"({"preset": "pyramid"})");
-    REQUIRE(std::holds_alternative<world::world_config>(pyramid));
-    CHECK(std::get<world::world_config>(pyramid).substeps == 4);
+    REQUIRE(pyramid.ok());
+    CHECK(pyramid.value.substeps == 4);
     // A one-step config's JSON does not name the field: its text and its hash in Welcome and
     // in recordings stay what they were before sub-steps existed.
     CHECK(config::config_to_json(world::world_config{}).find("substeps") == std::string::npos);

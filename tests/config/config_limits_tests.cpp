@@ -16,14 +16,14 @@ namespace {
 
 std::string error_of(const std::string& text) {
     auto r = config::parse_config_json(text);
-    REQUIRE(std::holds_alternative<config::config_error>(r));
-    return std::get<config::config_error>(r).message;
+    REQUIRE(!r.ok());
+    return r.error;
 }
 
 world::world_config parsed(const std::string& text) {
     auto r = config::parse_config_json(text);
-    if (auto* e = std::get_if<config::config_error>(&r)) FAIL(e->message);
-    return std::get<world::world_config>(r);
+    if (!r) FAIL(r.error);
+    return r.value;
 }
 
 bool all_finite(const world::world& w) {

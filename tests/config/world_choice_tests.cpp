@@ -15,14 +15,14 @@ namespace {
 
 config::world_choice chosen(const std::string& preset, const std::string& file, const std::string& rules) {
     auto r = config::choose_world(preset, file, rules);
-    if (auto* e = std::get_if<config::config_error>(&r)) FAIL(e->message);
-    return std::get<config::world_choice>(r);
+    if (!r) FAIL(r.error);
+    return r.value;
 }
 
 std::string error_of(const std::string& preset, const std::string& file, const std::string& rules) {
     auto r = config::choose_world(preset, file, rules);
-    REQUIRE(std::holds_alternative<config::config_error>(r));
-    return std::get<config::config_error>(r).message;
+    REQUIRE(!r.ok());
+    return r.error;
 }
 
 }  // namespace

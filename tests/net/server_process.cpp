@@ -238,4 +238,26 @@ std::string read_file(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+namespace {
+
+std::vector<std::string> with_free_port(std::vector<std::string> args, const std::string& flag) {
+    args.insert(args.end(), {flag, "0"});
+    return args;
+}
+
+uint16_t listening_port(server_process& process, const std::string& line) {
+    const uint16_t port = process.port_line(line);
+    if (port == 0) throw std::runtime_error("arena-server printed no \"" + line + " HOST:PORT\" line");
+    return port;
+}
+
+}  // namespace
+
+udp_server::udp_server(std::vector<std::string> args)
+    : process(with_free_port(std::move(args), "--udp-port")), udp_port(listening_port(process, "udp listening on")) {}
+
+http_server::http_server(std::vector<std::string> args)
+    : process(with_free_port(std::move(args), "--http-port")),
+      http_port(listening_port(process, "http listening on")) {}
+
 }  // namespace arena::test

@@ -74,6 +74,20 @@ private:
     std::vector<uint8_t> buffer_;
 };
 
+// arena-server with its UDP port open besides TCP (--udp-port 0), and that port.
+struct udp_server {
+    server_process process;
+    uint16_t udp_port = 0;
+    explicit udp_server(std::vector<std::string> args);
+};
+
+// arena-server with its HTTP port open (--http-port 0: the page, /ws, /healthz), and that port.
+struct http_server {
+    server_process process;
+    uint16_t http_port = 0;
+    explicit http_server(std::vector<std::string> args);
+};
+
 // The verified Message inside a frame read by test_client (aligned copy kept by the caller).
 const protocol::Message* message_of(const std::vector<uint8_t>& frame);
 

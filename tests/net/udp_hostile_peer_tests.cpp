@@ -21,19 +21,6 @@ using protocol::Payload;
 
 namespace {
 
-struct udp_server {
-    server_process process;
-    uint16_t udp_port = 0;
-    explicit udp_server(std::vector<std::string> args)
-        : process([&] {
-              args.insert(args.end(), {"--udp-port", "0"});
-              return args;
-          }()) {
-        udp_port = process.port_line("udp listening on");
-        REQUIRE(udp_port != 0);
-    }
-};
-
 bool joins(udp_client& c, const std::string& name) {
     if (!c.connected()) return false;
     c.send_reliable(protocol::encode_hello(protocol::protocol_version, name, ""));

@@ -24,19 +24,6 @@ using protocol::Payload;
 
 namespace {
 
-struct http_server {
-    server_process process;
-    uint16_t http_port = 0;
-    explicit http_server(std::vector<std::string> args)
-        : process([&] {
-              args.insert(args.end(), {"--http-port", "0"});
-              return args;
-          }()) {
-        http_port = process.port_line("http listening on");
-        REQUIRE(http_port != 0);
-    }
-};
-
 protocol::welcome_info join(ws_client& c, const std::string& name = "ws-tester") {
     REQUIRE(c.open());
     REQUIRE(c.send_binary(protocol::encode_hello(protocol::protocol_version, name, "")));

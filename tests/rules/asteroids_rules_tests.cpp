@@ -329,7 +329,7 @@ TEST_CASE("sandbox rules keep no state: the state hash is the world's", "[rules]
     world::world a(asteroids_game(), 3);
     CHECK(rules::make_rules(a)->has_state());
     const auto back = config::parse_config_json(config::config_to_json(asteroids_game()));
-    CHECK(std::get<world::world_config>(back).rules == world::game_rules::asteroids);
+    CHECK(back.value.rules == world::game_rules::asteroids);
     CHECK(config::config_to_json(world::platformer_preset()).find("\"rules\"") == std::string::npos);
 }
 

@@ -48,11 +48,11 @@ TEST_CASE("a box's mass and inertia are m = ρ·w·h and I = m·(w² + h²)/12",
 
 TEST_CASE("a right triangle's centroid is at a third of its legs and I = m·(a² + b²)/18", "[world][shape]") {
     const std::vector<vec2> points{{0, 0}, {2, 0}, {0, 2}};
-    const polygon_result r = make_polygon(points);
-    REQUIRE(r.polygon);
-    CHECK(r.centroid.x() == Approx(2.0 / 3));
-    CHECK(r.centroid.y() == Approx(2.0 / 3));
-    const mass_properties m = compute_mass(*r.polygon, 1.0f);
+    const auto r = make_polygon(points);
+    REQUIRE(r.ok());
+    CHECK(r.value.centre.x() == Approx(2.0 / 3));
+    CHECK(r.value.centre.y() == Approx(2.0 / 3));
+    const mass_properties m = compute_mass(r.value.geometry, 1.0f);
     CHECK(m.mass == Approx(2.0));
     CHECK(m.centre.norm() == Approx(0).margin(1e-6));  // make_polygon moved it to the origin
     CHECK(m.inertia == Approx(2.0 * (4.0 + 4.0) / 18.0));
@@ -61,17 +61,17 @@ TEST_CASE("a right triangle's centroid is at a third of its legs and I = m·(a²
 TEST_CASE("make_polygon takes the convex hull, counter-clockwise, and refuses degenerate input", "[world][shape]") {
     // A square given clockwise, with an interior point and a point on an edge.
     const std::vector<vec2> points{{0, 0}, {0, 2}, {1, 1}, {2, 2}, {2, 0}, {1, 0}};
-    const polygon_result r = make_polygon(points);
-    REQUIRE(r.polygon);
-    CHECK(r.polygon->count == 4);
+    const auto r = make_polygon(points);
+    REQUIRE(r.ok());
+    CHECK(r.value.geometry.count == 4);
     real area2 = 0;
     for (int i = 0; i < 4; ++i) {
-        const vec2 a = r.polygon->vertices[i], b = r.polygon->vertices[(i + 1) % 4];
+        const vec2 a = r.value.geometry.vertices[i], b = r.value.geometry.vertices[(i + 1) % 4];
         area2 += a.x() * b.y() - a.y() * b.x();
     }
     CHECK(area2 == Approx(8.0));  // positive: counter-clockwise
     const std::vector<vec2> line{{0, 0}, {1, 1}, {2, 2}};
-    CHECK_FALSE(make_polygon(line).polygon);
+    CHECK_FALSE(make_polygon(line).ok());
     CHECK(make_polygon(line).error.find("no area") != std::string::npos);
     const std::vector<vec2> nine(9, vec2{0, 0});
     CHECK(make_polygon(nine).error.find("at most 8") != std::string::npos);

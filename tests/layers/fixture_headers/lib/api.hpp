@@ -1,0 +1,2 @@
+#pragma once
+// The fixture library's public header.

@@ -1,0 +1,2 @@
+#pragma once
+// Internal to the fixture library.
