@@ -30,6 +30,20 @@ void snapshot_loss::acked(uint32_t tick) {
     last_ack_ = tick;
 }
 
+void snapshot_loss::input_arrived(uint32_t sequence) {
+    const bool skipped = last_input_ != 0 && sequence > last_input_ + 1;
+    if (sequence > last_input_) last_input_ = sequence;
+    // One lost snapshot would still bring the copies: the estimate has not yet decayed that far.
+    const bool still_measuring = snapshot_loss_ + limits_.smoothing * (1 - snapshot_loss_) > limits_.copy_above;
+    if (skipped && copies_ == 1 && !had_copies_ && still_measuring) start_copies();
+}
+
+void snapshot_loss::start_copies() {
+    copies_ = 2;
+    twice_left_ = limits_.copies_for_snapshots;
+    had_copies_ = true;
+}
+
 void snapshot_loss::record(bool lost) {
     ++samples_;
     if (copies_ == 2) {
@@ -37,10 +51,7 @@ void snapshot_loss::record(bool lost) {
         return;
     }
     snapshot_loss_ += limits_.smoothing * ((lost ? 1.0 : 0.0) - snapshot_loss_);
-    if (snapshot_loss_ > limits_.copy_above) {
-        copies_ = 2;
-        twice_left_ = limits_.copies_for_snapshots;
-    }
+    if (snapshot_loss_ > limits_.copy_above) start_copies();
 }
 
 }  // namespace arena::net

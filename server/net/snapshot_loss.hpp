@@ -13,7 +13,12 @@
 // zero: nothing is known of its link yet, so its first loss brings the copies (at 5 % loss,
 // after about 20 snapshots, one second) while a clean link decays to zero and never sends one.
 // Starting from zero, a 5 % link would lose some 3 snapshots in 67 before its copies came,
-// which alone puts more than 1 % of an 8-second session's gaps at two intervals. While
+// which alone puts more than 1 % of an 8-second session's gaps at two intervals. An ack tells
+// of a loss a round trip late, so a new client's first loss on the way up counts too: while
+// its first snapshots are still being measured (before its first copies, and while one lost
+// snapshot would still bring them), an Input that never came (a gap in the sequences) brings
+// the copies as a lost snapshot would. Inputs go 60 a second and tell at once: at 5 % loss
+// the first is missed after a third of a second. While
 // each snapshot goes twice, the acks say little about one datagram's loss (a snapshot is lost
 // only when both copies are, p^2), so the copies go for a fixed stretch (600 snapshots, 30 s),
 // extended by each snapshot lost even so; then one copy again, the estimate starting at the
@@ -40,6 +45,8 @@ public:
     void sent(uint32_t tick);
     // An Input's snapshot_ack: the newest snapshot tick the client decoded (0: none yet).
     void acked(uint32_t tick);
+    // An Input's sequence (one Input a datagram over UDP; sequences rise by one per input).
+    void input_arrived(uint32_t sequence);
 
     // The estimated loss of one datagram, 0 to 1 (while two copies go: as it was when they started).
     [[nodiscard]] double datagram_loss() const { return snapshot_loss_; }
@@ -50,6 +57,7 @@ public:
 
 private:
     void record(bool lost);
+    void start_copies();
 
     snapshot_loss_limits limits_;
     // The ticks of the last snapshots sent, oldest overwritten: 64 cover 3 s at 20 Hz, longer
@@ -61,6 +69,8 @@ private:
     uint64_t samples_ = 0;
     uint32_t copies_ = 1;
     uint32_t twice_left_ = 0;  // while copies_ is 2: snapshots still to send twice
+    uint32_t last_input_ = 0;  // the newest Input sequence seen
+    bool had_copies_ = false;  // a first stretch of copies began: the acks alone decide from then on
 };
 
 }  // namespace arena::net

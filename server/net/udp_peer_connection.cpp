@@ -42,7 +42,10 @@ bool udp_peer_connection::receive(std::span<const uint8_t> datagram, int64_t arr
         // What the gate and the snapshot copies need to know of the peer: whether it said
         // Hello (from then on it may send fragments), and which snapshot it acknowledged.
         if (message->payload_type() == protocol::Payload::Hello) said_hello_ = true;
-        if (const protocol::Input* input = message->payload_as_Input()) loss_.acked(input->snapshot_ack());
+        if (const protocol::Input* input = message->payload_as_Input()) {
+            loss_.input_arrived(input->sequence());
+            loss_.acked(input->snapshot_ack());
+        }
     }
     const bool go_on = taken.go_on;
     reader_.next();

@@ -78,6 +78,39 @@ TEST_CASE("at 5 % loss a new UDP client's first lost snapshot brings the second 
     CHECK(lost * 100 < snapshots);
 }
 
+TEST_CASE("a new UDP client's first lost Input brings the second copy before any snapshot is lost", "[net][udp]") {
+    snapshot_loss estimator;
+    estimator.input_arrived(1);
+    estimator.input_arrived(2);
+    CHECK(estimator.copies() == 1);
+    estimator.input_arrived(4);  // 3 never came
+    CHECK(estimator.copies() == 2);
+}
+
+TEST_CASE("a lost Input says nothing once a UDP client's snapshots have been measured", "[net][udp]") {
+    lossy_link l;
+    l.run(200, 0.0);  // 10 s of snapshots, all acknowledged: the estimate has decayed
+    uint32_t sequence = 1;
+    for (; sequence <= 600; ++sequence) l.estimator.input_arrived(sequence);
+    l.estimator.input_arrived(sequence + 1);  // one skipped
+    CHECK(l.estimator.copies() == 1);
+    // Nor after a first stretch of copies: from then on the acks alone decide.
+    snapshot_loss fresh;
+    fresh.input_arrived(1);
+    fresh.input_arrived(3);
+    REQUIRE(fresh.copies() == 2);
+    uint32_t tick = 0;
+    for (int i = 0; i < 700; ++i) {
+        tick += 3;
+        fresh.sent(tick);
+        fresh.acked(tick);
+    }
+    REQUIRE(fresh.copies() == 1);
+    fresh.input_arrived(10);
+    fresh.input_arrived(12);
+    CHECK(fresh.copies() == 1);
+}
+
 TEST_CASE("when a UDP client's loss ends the second copy stops", "[net][udp]") {
     lossy_link l;
     l.run(1000, 0.05);
