@@ -33,9 +33,9 @@ void snapshot_loss::acked(uint32_t tick) {
 void snapshot_loss::input_arrived(uint32_t sequence) {
     const bool skipped = last_input_ != 0 && sequence > last_input_ + 1;
     if (sequence > last_input_) last_input_ = sequence;
+    if (!skipped || copies_ != 1 || had_copies_) return;
     // One lost snapshot would still bring the copies: the estimate has not yet decayed that far.
-    const bool still_measuring = snapshot_loss_ + limits_.smoothing * (1 - snapshot_loss_) > limits_.copy_above;
-    if (skipped && copies_ == 1 && !had_copies_ && still_measuring) start_copies();
+    if (snapshot_loss_ + limits_.smoothing * (1 - snapshot_loss_) > limits_.copy_above) start_copies();
 }
 
 void snapshot_loss::start_copies() {

@@ -267,41 +267,43 @@ std::optional<udp_refusal> udp_transport::make_room_for_connect(ENetHost* host, 
     // (admission.cpp): players behind one address may connect all at once while there is
     // room, and handshakes left half-open from any number of spoofed addresses cannot keep an
     // honest connect out, since they are always the ones holding the most.
+
+    // Per address: its half-open handshakes, and the oldest of them (one not yet seen by the
+    // reaper counts as new).
+    struct half_open_held {
+        uint32_t count = 0;
+        ENetPeer* oldest = nullptr;
+        int64_t oldest_since = 0;
+    };
     bool free_slot = false;
     size_t same_host = 0;
-    std::unordered_map<enet_uint32, uint32_t> half_open_by_host;
+    std::unordered_map<enet_uint32, half_open_held> half_open_by_host;
     for (size_t i = 0; i < host->peerCount; ++i) {
-        const ENetPeer& peer = host->peers[i];
+        ENetPeer& peer = host->peers[i];
         if (peer.state == ENET_PEER_STATE_DISCONNECTED) {
             free_slot = true;
             continue;
         }
-        if (peer.state == ENET_PEER_STATE_ACKNOWLEDGING_CONNECT) ++half_open_by_host[peer.address.host];
         if (peer.state != ENET_PEER_STATE_CONNECTING && peer.address.host == from.host) ++same_host;
+        if (peer.state != ENET_PEER_STATE_ACKNOWLEDGING_CONNECT) continue;
+        half_open_held& held = half_open_by_host[peer.address.host];
+        ++held.count;
+        const int64_t since = i < half_open_.size() && half_open_[i].since_ns >= 0
+                                  ? half_open_[i].since_ns
+                                  : std::numeric_limits<int64_t>::max() - 1;
+        if (held.oldest == nullptr || since < held.oldest_since) {
+            held.oldest = &peer;
+            held.oldest_since = since;
+        }
     }
     if (same_host >= host->duplicatePeers) return udp_refusal::peer_limit;
     if (free_slot) return std::nullopt;
     if (half_open_by_host.empty()) return udp_refusal::peer_limit;  // every slot holds a connection
     const auto most = std::max_element(half_open_by_host.begin(), half_open_by_host.end(),
-                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+                                       [](const auto& a, const auto& b) { return a.second.count < b.second.count; });
     const auto own = half_open_by_host.find(from.host);
-    if (own != half_open_by_host.end() && own->second >= most->second) return udp_refusal::half_open;
-    // The oldest of that address's half-open handshakes (one not yet seen by the reaper counts
-    // as new).
-    ENetPeer* oldest = nullptr;
-    int64_t oldest_since = std::numeric_limits<int64_t>::max();
-    for (size_t i = 0; i < host->peerCount && i < half_open_.size(); ++i) {
-        ENetPeer& peer = host->peers[i];
-        if (peer.state != ENET_PEER_STATE_ACKNOWLEDGING_CONNECT || peer.address.host != most->first) continue;
-        const int64_t since =
-            half_open_[i].since_ns < 0 ? std::numeric_limits<int64_t>::max() - 1 : half_open_[i].since_ns;
-        if (oldest == nullptr || since < oldest_since) {
-            oldest = &peer;
-            oldest_since = since;
-        }
-    }
-    if (oldest == nullptr) return udp_refusal::peer_limit;
-    enet_peer_reset(oldest);  // never connected: no connection of ours to forget
+    if (own != half_open_by_host.end() && own->second.count >= most->second.count) return udp_refusal::half_open;
+    enet_peer_reset(most->second.oldest);  // never connected: no connection of ours to forget
     return std::nullopt;
 }
 
