@@ -35,7 +35,7 @@ void client_core::launch(time_ns now) {
 void client_core::connected() {
     if (phase_ != phase::connecting) return;
     phase_ = phase::joining;
-    queue(session_.hello(params_.name, params_.token));
+    queue(session_.hello(params_.name, params_.token, params_.join_match, params_.join_mode));
 }
 
 void client_core::on_bytes(std::span<const std::uint8_t> data, time_ns now) {

@@ -45,6 +45,8 @@ struct client_params {
     std::string name;   // Hello.name
     std::string token;  // Hello.token
     bool delta_snapshots = true;
+    std::string join_match;                 // Hello.match
+    std::string join_mode;                  // Hello.mode
     time_ns join_timeout = 10'000'000'000;  // ns from launch() to Welcome before giving up
     // The transport carries messages that may be lost, duplicated or reordered (datagrams):
     // a Snapshot or Pong before the Welcome, or a Snapshot no newer than the last one, is

@@ -48,6 +48,8 @@ fleet::fleet(boost::asio::io_context& io, options opts)
         params.name = opts_.name_prefix + "-" + std::to_string(i);
         params.token = token_for(opts_, params.name);
         params.delta_snapshots = !opts_.full_snapshots;
+        params.join_match = opts_.match;
+        params.join_mode = opts_.mode;
         params.join_timeout = static_cast<time_ns>(opts_.join_timeout * 1e9);
         if (opts_.transport == transport_kind::udp)
             bots_.push_back(std::make_unique<udp_bot>(

@@ -44,6 +44,10 @@ int parse_options(int argc, char** argv, options& out) {
     app.add_option("--join-timeout", out.join_timeout, "seconds a bot waits for its Welcome")
         ->check(CLI::Range(0.1, 3600.0))
         ->capture_default_str();
+    app.add_option("--match", out.match, "join the match with this id (the lobby's GET /matches lists them)");
+    app.add_option("--mode", out.mode,
+                   "join the fullest open match of this mode with a seat, or create one (join-or-create); with "
+                   "neither, the server's default match");
     app.add_flag("--quiet,-q", out.quiet, "no progress line each second");
     app.add_flag("--full-snapshots", out.full_snapshots,
                  "ask for full BodyState snapshots instead of deltas (no Hello.delta_snapshots)");

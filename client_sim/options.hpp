@@ -31,6 +31,8 @@ struct options {
     bool quiet = false;                              // no progress lines
     double join_timeout = 10;                        // s from launch to Welcome before a bot gives up
     bool full_snapshots = false;                     // do not ask for delta snapshots (the simple client's path)
+    std::string match;                               // Hello.match: every bot joins this match
+    std::string mode;                                // Hello.mode: every bot joins or creates a match of this mode
     transport_kind transport = transport_kind::tcp;  // udp: ENet, to a server's --udp-port; ws: its --http-port /ws
     double simulate_latency_ms = 0;                  // udp: added each way on the bot's side
     double simulate_jitter_ms = 0;                   // udp: ± uniform around it

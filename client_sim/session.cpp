@@ -302,9 +302,11 @@ std::vector<own_bullet> session::own_bullets() const {
     return out;
 }
 
-std::span<const std::uint8_t> session::hello(std::string_view name, std::string_view token) {
+std::span<const std::uint8_t> session::hello(std::string_view name, std::string_view token, std::string_view match,
+                                             std::string_view mode) {
     return keep(
-        protocol::encode_hello(protocol::protocol_version, name, token, options_.delta_snapshots, options_.spectator));
+        protocol::encode_hello({protocol::protocol_version, std::string(name), std::string(token),
+                                options_.delta_snapshots, options_.spectator, std::string(match), std::string(mode)}));
 }
 
 bool session::send_this_tick() {

@@ -84,7 +84,10 @@ public:
     [[nodiscard]] bool stale() const { return stale_; }
 
     // --- what the client sends (each returns one frame, valid until the next call) ---------
-    std::span<const std::uint8_t> hello(std::string_view name, std::string_view token);
+    // `match` and `mode` (Hello.match, Hello.mode): the match to join, or the mode of one to join
+    // or create; both empty, the server's default match.
+    std::span<const std::uint8_t> hello(std::string_view name, std::string_view token, std::string_view match = {},
+                                        std::string_view mode = {});
     // Numbers the input, predicts it (once a snapshot placed the body) and encodes it with
     // the newest delta view decoded as the acknowledgement. Empty before the Welcome, after
     // the end, and for a spectator (the server refuses its Inputs). Empty too for a tick the

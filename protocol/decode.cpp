@@ -30,8 +30,9 @@ std::string_view payload_name(Payload type) noexcept {
 result<hello_msg> decode_hello(const Message& message) {
     const auto* t = message.payload_as<Hello>();
     if (t == nullptr) return result<hello_msg>::failure(unexpected(message, Payload::Hello));
-    return result<hello_msg>::success(
-        {t->protocol_version(), to_string(t->name()), to_string(t->token()), t->delta_snapshots(), t->spectator()});
+    return result<hello_msg>::success({t->protocol_version(), to_string(t->name()), to_string(t->token()),
+                                       t->delta_snapshots(), t->spectator(), to_string(t->match()),
+                                       to_string(t->mode())});
 }
 
 result<welcome_info> decode_welcome(const Message& message) {
@@ -48,6 +49,8 @@ result<welcome_info> decode_welcome(const Message& message) {
     w.world_config_hash = t->world_config_hash();
     w.world_version = t->world_version();
     w.view_radius = t->view_radius();
+    w.match = to_string(t->match());
+    w.mode = to_string(t->mode());
     // The static geometry: one pose per shape, the same ids, finite poses.
     std::vector<shape_desc> shapes;
     const std::string problem = read_shapes(t->static_shapes(), t->static_vertices(), shapes);

@@ -25,11 +25,21 @@ void finish_message(flatbuffers::FlatBufferBuilder& fbb, Payload type, flatbuffe
 
 frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token, bool delta_snapshots,
                          bool spectator) {
-    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + name.size() + token.size());
-    const auto name_offset = make_string(fbb, name);
-    const auto token_offset = make_string(fbb, token);
+    return encode_hello(hello_msg{version, std::string(name), std::string(token), delta_snapshots, spectator, {}, {}});
+}
+
+frame_bytes encode_hello(const hello_msg& h) {
+    flatbuffers::FlatBufferBuilder fbb(small_message_bytes + h.name.size() + h.token.size() + h.match.size() +
+                                       h.mode.size());
+    const auto name_offset = make_string(fbb, h.name);
+    const auto token_offset = make_string(fbb, h.token);
+    // Absent, not empty, when unset: a Hello of today's clients keeps its bytes.
+    const auto match_offset = h.match.empty() ? flatbuffers::Offset<flatbuffers::String>() : fbb.CreateString(h.match);
+    const auto mode_offset = h.mode.empty() ? flatbuffers::Offset<flatbuffers::String>() : fbb.CreateString(h.mode);
     finish_message(fbb, Payload::Hello,
-                   CreateHello(fbb, version, name_offset, token_offset, delta_snapshots, spectator).Union());
+                   CreateHello(fbb, h.protocol_version, name_offset, token_offset, h.delta_snapshots, h.spectator,
+                               match_offset, mode_offset)
+                       .Union());
     return to_frame(fbb);
 }
 
@@ -37,6 +47,8 @@ frame_bytes encode_welcome(const welcome_info& w) {
     flatbuffers::FlatBufferBuilder fbb(small_message_bytes + w.preset.size() + w.world_config.size());
     const auto preset = make_string(fbb, w.preset);
     const auto config = make_string(fbb, w.world_config);
+    const auto match = w.match.empty() ? flatbuffers::Offset<flatbuffers::String>() : fbb.CreateString(w.match);
+    const auto mode = w.mode.empty() ? flatbuffers::Offset<flatbuffers::String>() : fbb.CreateString(w.mode);
     // The static geometry; absent (not empty vectors) in a world without any, as before.
     flatbuffers::Offset<flatbuffers::Vector<const BodyState*>> poses;
     flatbuffers::Offset<flatbuffers::Vector<const BodyShape*>> shapes;
@@ -53,10 +65,11 @@ frame_bytes encode_welcome(const welcome_info& w) {
         shapes = fbb.CreateVectorOfStructs(list.shapes.data(), list.shapes.size());
         vertices = fbb.CreateVectorOfStructs(list.vertices.data(), list.vertices.size());
     }
-    finish_message(fbb, Payload::Welcome,
-                   CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate, w.snapshot_rate, preset, config,
-                                 w.world_config_hash, w.world_version, w.view_radius, poses, shapes, vertices)
-                       .Union());
+    finish_message(
+        fbb, Payload::Welcome,
+        CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate, w.snapshot_rate, preset, config,
+                      w.world_config_hash, w.world_version, w.view_radius, poses, shapes, vertices, match, mode)
+            .Union());
     return to_frame(fbb);
 }
 

@@ -23,6 +23,8 @@ struct hello_msg {
     std::string token;             // opaque
     bool delta_snapshots = false;  // the client decodes delta snapshots
     bool spectator = false;        // the client watches: no body, no score line
+    std::string match{};           // join this match ("": see mode)
+    std::string mode{};            // join-or-create a match of this mode ("" with match "": the default match)
     bool operator==(const hello_msg&) const = default;
 };
 
@@ -38,6 +40,8 @@ struct welcome_info {
     std::uint32_t world_version = 0;
     float view_radius = 0.0f;            // m; 0 = the whole world
     std::vector<static_body> statics{};  // every static body, by increasing id (README.md, "Shapes")
+    std::string match{};                 // the id of the match joined
+    std::string mode{};                  // the mode it plays
     bool operator==(const welcome_info&) const = default;
 };
 
@@ -91,6 +95,7 @@ inline constexpr std::uint8_t button_impulse = 1u << 0;
 
 [[nodiscard]] frame_bytes encode_hello(std::uint16_t version, std::string_view name, std::string_view token,
                                        bool delta_snapshots = false, bool spectator = false);
+[[nodiscard]] frame_bytes encode_hello(const hello_msg& hello);
 [[nodiscard]] frame_bytes encode_welcome(const welcome_info& welcome);
 [[nodiscard]] frame_bytes encode_reject(RejectCode code, std::string_view reason);
 [[nodiscard]] frame_bytes encode_input(const input_msg& input);

@@ -57,7 +57,7 @@ private:
 }  // namespace
 
 int run_server(const cli::server_setup& setup) {
-    host::process_host host(setup.host, setup.world, setup.ops);
+    host::process_host host(setup.host, setup.ops);
     match_recording recording;  // outlives the host's run: its callbacks point here
     if (!setup.record.empty() && !recording.open(host, setup)) return 2;
     // Started in this order: "listening on", then "udp listening on", then "http listening on".

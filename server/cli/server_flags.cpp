@@ -1,12 +1,15 @@
 #include "server/cli/server_flags.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 #include <variant>
 
 #include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
+#include "server/config/modes.hpp"
 #include "server/config/world_choice.hpp"
 #include "server/net/static_files.hpp"
 #include "server/ops/ops_flags.hpp"
@@ -31,12 +34,51 @@ bool choose_world(const std::string& preset, const std::string& config_file, con
     return true;
 }
 
+// The modes (built in, then --modes FILE's) and the default match's: --mode's, else the
+// one --preset names, else "custom", the world of --config or --rules. False: refused.
+bool choose_modes(const std::string& modes_file, const std::string& mode_name, bool world_flags, server_setup& out) {
+    host::host_options& options = out.host;
+    options.modes = config::builtin_modes();
+    if (!modes_file.empty()) {
+        auto loaded = config::load_modes_file(modes_file);
+        if (!loaded) {
+            std::fprintf(stderr, "arena-server: --modes: %s\n", loaded.error.c_str());
+            return false;
+        }
+        options.modes = config::merge_modes(std::move(options.modes), loaded.value);
+    }
+    if (!mode_name.empty()) {
+        const config::mode* chosen = config::find_mode(options.modes, mode_name);
+        if (!chosen) {
+            std::fprintf(stderr, "arena-server: --mode: unknown mode '%s' (%s)\n", mode_name.c_str(),
+                         config::mode_names(options.modes).c_str());
+            return false;
+        }
+        options.default_mode = mode_name;
+        options.match.preset = chosen->preset;
+        out.world = chosen->world;
+        return true;
+    }
+    // The preset's own mode, when --preset alone chose the world and a mode plays it as is.
+    const bool plain_preset =
+        !world_flags && (options.match.preset == "asteroids" || options.match.preset == "platformer");
+    options.default_mode = options.match.preset == "platformer" ? "sandbox" : options.match.preset;
+    if (!plain_preset) {
+        options.default_mode = "custom";
+        config::mode custom{"custom", out.world, options.match.preset, 0, 0};
+        options.modes = config::merge_modes(std::move(options.modes), {custom});
+    } else {
+        out.world = config::find_mode(options.modes, options.default_mode)->world;
+    }
+    return true;
+}
+
 }  // namespace
 
 int parse_server_flags(int argc, char** argv, server_setup& out) {
     CLI::App app{"arena-server: the authoritative Arena game server", "arena-server"};
     host::host_options& options = out.host;
-    std::string preset = "asteroids", config_file;
+    std::string preset = "asteroids", config_file, modes_file, mode_name;
     double handshake_s = 5, stall_s = 5, idle_s = 5;
     app.add_option("--bind", options.bind, "address to listen on (default 127.0.0.1; 0.0.0.0 for all)");
     app.add_option("--port", out.tcp.port, "TCP port (default 7777; 0 picks a free one)");
@@ -84,6 +126,19 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
                    "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
                    "overrides the preset's or the config file's (default: the preset's; a config's \"rules\", else "
                    "sandbox)");
+    app.add_option("--modes", modes_file,
+                   "modes file (JSON): adds modes to the built-in sandbox and asteroids, or overrides them by name "
+                   "(docs/MATCHES.md)");
+    auto* mode_flag = app.add_option("--mode", mode_name,
+                                     "the default match's mode (sandbox, asteroids, or one of --modes); excludes "
+                                     "--preset, --config and --rules");
+    app.add_option("--max-matches", options.max_matches,
+                   "matches at once in this process, the default one included (default: 50 per core, "
+                   "each match's memory being small; 1 hosts the default match alone)")
+        ->check(CLI::Range(1u, 100'000u));
+    app.add_option("--empty-match-seconds", options.empty_match_seconds,
+                   "a match created on demand ends after this long without a client (default 30)")
+        ->check(cli::finite_non_negative);
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
     app.add_option("--record", out.record, "record the session to FILE for arena-replay");
     app.add_option("--duration", options.duration_s,
@@ -170,7 +225,16 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     options.stall_timeout_ns = static_cast<int64_t>(stall_s * 1e9);
     options.match.admission.idle_timeout = std::chrono::nanoseconds(static_cast<int64_t>(idle_s * 1e9));
 
+    const bool world_flags = app.count("--preset") + app.count("--config") + app.count("--rules") > 0;
+    if (mode_flag->count() > 0 && world_flags) {
+        std::fprintf(stderr,
+                     "arena-server: --mode: a mode names its own world and rules; leave out --preset, "
+                     "--config and --rules (or add a mode with --modes)\n");
+        return 2;
+    }
     if (!choose_world(preset, config_file, rules_name, out)) return 2;
+    if (app.count("--max-matches") == 0) options.max_matches = 50 * std::max(1u, std::thread::hardware_concurrency());
+    if (!choose_modes(modes_file, mode_name, app.count("--config") + app.count("--rules") > 0, out)) return 2;
 
     if (udp_port >= 0)
         // 0: auto, a second copy per client while its measured loss calls for one.

@@ -49,12 +49,29 @@ const char* signal_reason(int signo) {
     }
 }
 
+registry_options registry_options_of(const host_options& o) {
+    registry_options r;
+    r.base = o.match;
+    r.modes = o.modes;
+    r.default_mode = o.default_mode;
+    r.max_matches = std::max<uint32_t>(1, o.max_matches);
+    r.empty_match_ticks = static_cast<uint32_t>(std::max(1.0, o.empty_match_seconds * o.match.tick_rate));
+    r.wall_clock_ms = [] {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(
+                   std::chrono::system_clock::now().time_since_epoch())
+            .count();
+    };
+    return r;
+}
+
 }  // namespace
 
-process_host::process_host(const host_options& options, const world::world_config& world_config,
-                           const ops::ops_options& ops)
+process_host::process_host(const host_options& options, const ops::ops_options& ops)
     : options_(options),
-      match_(options.match, world_config, server_logger(), token_check_of(options)),
+      check_token_(token_check_of(options)),
+      matches_(
+          registry_options_of(options),
+          [](std::string_view line) { log_line("%.*s", static_cast<int>(line.size()), line.data()); }, check_token_),
       clock_(1'000'000'000LL / options.match.tick_rate, options.max_catch_up),
       tick_timer_(io_),
       stop_timer_(io_),
@@ -71,6 +88,10 @@ int64_t process_host::now_ns() const {
     return steady_now_ns();
 }
 
+lobby_answer process_host::lobby(const lobby_request& request) {
+    return answer_lobby(matches_, request, check_token_);
+}
+
 void process_host::add(std::unique_ptr<transport> t) {
     transports_.push_back(std::move(t));
 }
@@ -85,8 +106,9 @@ ops::http_handlers process_host::http_handlers() {
 void process_host::start() {
     watch_signals();
     for (auto& t : transports_) t->start();  // each prints its "listening on HOST:PORT"
-    log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu", options_.match.tick_rate,
-             options_.match.snapshot_rate, options_.match.admission.max_players, match_.state().bodies().size());
+    log_line("ready: tick_rate=%u snapshot_rate=%u max_players=%u bodies=%zu mode=%s max_matches=%u",
+             options_.match.tick_rate, options_.match.snapshot_rate, default_match().config().admission.max_players,
+             default_match().state().bodies().size(), options_.default_mode.c_str(), matches_.options().max_matches);
     warn_about_descriptor_limit();
     started_ns_ = window_start_ns_ = last_watchdog_ns_ = last_tick_ns_ = now_ns();
     boost::asio::co_spawn(io_, tick_loop(), boost::asio::detached);
@@ -117,12 +139,12 @@ void process_host::warn_about_descriptor_limit() const {
     // metrics endpoint's connections need some more (32 is generous).
     rlimit limit{};
     if (::getrlimit(RLIMIT_NOFILE, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
-    const uint64_t wanted = static_cast<uint64_t>(match_.rules().connection_limit()) + 32;
+    const uint64_t wanted = static_cast<uint64_t>(default_match().rules().connection_limit()) + 32;
     if (wanted > limit.rlim_cur)
         log_line(
             "warning: --max-connections %u (+32 for the server's own files) exceeds the descriptor limit %llu "
             "(ulimit -n): connections beyond it wait in the listen queue",
-            match_.rules().connection_limit(), static_cast<unsigned long long>(limit.rlim_cur));
+            default_match().rules().connection_limit(), static_cast<unsigned long long>(limit.rlim_cur));
 }
 
 boost::asio::awaitable<void> process_host::tick_loop() {
@@ -143,14 +165,19 @@ void process_host::run_due_ticks() {
         for (auto& t : transports_) t->read_before_tick();
     for (uint32_t i = 0; i < due; ++i) {
         const int64_t begin = now_ns();
-        match_.tick();
+        matches_.tick_all([this] { return now_ns(); },
+                          [this](const hosted_match& m, int64_t spent) {
+                              auto [it, added] = mode_ticks_.try_emplace(m.mode, ops::tick_duration_buckets_s());
+                              it->second.observe(static_cast<double>(spent) / 1e9);
+                          });
+        // The whole tick: every match's (one match's, on a server of one).
         const int64_t spent = now_ns() - begin;
         run_ticks_.add(spent);
         window_ticks_.add(spent);
         tick_seconds_.observe(static_cast<double>(spent) / 1e9);
-        if (match_.over()) {
+        if (const std::string over = matches_.default_match_over(); !over.empty()) {
             // The rules' winner and the final scoreboard go out in every Bye.
-            shutdown("match over (--score-limit reached)");
+            shutdown(over);
             return;
         }
     }
@@ -175,7 +202,7 @@ void process_host::log_stats(int64_t now) {
     p.window.bytes_out_per_s = static_cast<double>(p.bytes_out - window_bytes_out_) / seconds;
     // The same figures as --stats-json and /metrics, through the same report()s.
     ops::stats_line_sink line;
-    report(match_.counters(), line);
+    report(default_match().counters(), line);
     report(p, line);
     log_line("%s", line.line().c_str());
     window_ticks_.clear();
@@ -207,7 +234,13 @@ ops::server_metrics process_host::metrics_snapshot() const {
     ops::server_metrics m;
     m.tick_duration_s = tick_seconds_;
     m.tick_budget_s = 1.0 / options_.match.tick_rate;
-    m.figures = [match = match_.counters(), process = process_counters()](match::figure_sink& out) {
+    for (const auto& [key, hosted] : matches_.matches()) {
+        ops::mode_figures& f = m.modes[hosted.mode];
+        ++f.matches;
+        f.players += hosted.game->live_player_count();
+    }
+    for (const auto& [mode, ticks] : mode_ticks_) m.modes[mode].tick_duration_s = ticks;
+    m.figures = [match = matches_.default_match().counters(), process = process_counters()](match::figure_sink& out) {
         report(match, out);
         report(process, out);
     };
@@ -230,7 +263,7 @@ void process_host::shutdown(const std::string& reason) {
     for (auto& t : transports_) t->stop();
     tick_timer_.cancel();
     stop_timer_.cancel();
-    match_.shut_down(reason);  // Bye to every connection
+    matches_.shut_down(reason);  // Bye to every connection of every match
     if (drained()) {
         finish();
         return;

@@ -1,12 +1,13 @@
 #pragma once
 // The house the matches live in: one io_context run on the calling thread, the signals that
-// end a run, the fixed-rate tick loop, the registry of matches (one today), the ops endpoint
+// end a run, the fixed-rate tick loop, the registry of matches (match_registry.hpp), the ops endpoint
 // and the Agones client, the stats, and the orderly shutdown. Transports plug in through
 // transport.hpp; the host knows none of them by name. A tick: every transport's
-// read_before_tick() (what clients sent goes through the intake to the match), the match's
+// read_before_tick() (what clients sent goes through the intake to its match), every match's
 // ticks, every transport's flush_after_tick().
 #include <boost/asio.hpp>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,7 +28,8 @@ namespace arena::host {
 
 class process_host final : public transport_host {
 public:
-    process_host(const host_options& options, const world::world_config& world_config, const ops::ops_options& ops);
+    // The default match plays options.default_mode. Throws when it cannot start.
+    process_host(const host_options& options, const ops::ops_options& ops);
     ~process_host();
     process_host(const process_host&) = delete;
     process_host& operator=(const process_host&) = delete;
@@ -46,8 +48,9 @@ public:
     // Called once, after the last tick, before the io_context stops (recording, stats).
     std::function<void()> on_shutdown;
 
-    match::match& default_match() { return match_; }
-    uint32_t current_tick() const { return match_.state().tick(); }
+    match::match& default_match() { return matches_.default_match(); }
+    const match::match& default_match() const { return matches_.default_match(); }
+    uint32_t current_tick() const { return matches_.default_match().state().tick(); }
     // What /metrics and /healthz answer (for the HTTP port's routes).
     ops::http_handlers http_handlers();
     // The figures /metrics shows.
@@ -63,6 +66,7 @@ public:
     const host_options& options() const override { return options_; }
     arena::host::intake& intake() override { return intake_; }
     match_registry& matches() override { return matches_; }
+    lobby_answer lobby(const lobby_request& request) override;
     ops::process_counters& counters() override { return process_; }
     int64_t now_ns() const override;
     bool shutting_down() const override { return stopping_; }
@@ -81,8 +85,9 @@ private:
 
     boost::asio::io_context io_{1};  // one thread: the match, the transports and ops share it
     host_options options_;
-    match::match match_;
-    match_registry matches_{match_};
+    match::token_check check_token_;  // the --token-secret's, for the matches and the lobby
+    match_registry matches_;
+    std::map<std::string, ops::histogram> mode_ticks_;  // one match's tick, seconds, by mode
     ops::process_counters process_;  // whole run (connections_open and tick_overruns filled when read)
     arena::host::intake intake_{matches_, process_};
     tick_clock clock_;

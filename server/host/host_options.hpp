@@ -5,15 +5,22 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "server/auth/join_token.hpp"
+#include "server/config/modes.hpp"
 #include "server/match/match.hpp"
 
 namespace arena::host {
 
 struct host_options {
     std::string bind = "127.0.0.1";  // the address every transport listens on
-    match::match_config match{};
+    match::match_config match{};     // every match's, its mode's capacity over max_players
+    // What the matches play: every mode a Hello or the lobby may name, and the default match's.
+    std::vector<config::mode> modes = config::builtin_modes();
+    std::string default_mode = "asteroids";
+    uint32_t max_matches = 1;                  // matches at once, the default one included
+    double empty_match_seconds = 30;           // a match created on demand ends after this long empty
     double duration_s = 0;                     // 0: run until a signal
     std::string stats_json;                    // written at exit when set
     int64_t stall_timeout_ns = 5'000'000'000;  // output stuck this long drops the client

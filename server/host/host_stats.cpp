@@ -48,9 +48,9 @@ void process_host::write_stats_json(const std::string& path) const {
         {"limits",
          {{"max_players", options_.match.admission.max_players},
           {"max_spectators", options_.match.admission.max_spectators},
-          {"max_connections", match_.rules().connection_limit()},
-          {"max_pending_handshakes", match_.rules().pending_limit()},
-          {"max_inputs_per_second", match_.rules().input_limit()},
+          {"max_connections", matches_.default_match().rules().connection_limit()},
+          {"max_pending_handshakes", matches_.default_match().rules().pending_limit()},
+          {"max_inputs_per_second", matches_.default_match().rules().input_limit()},
           {"input_buffer", options_.match.input_buffer},
           {"max_frame_bytes", protocol::max_client_frame_body},
           {"max_control_frames", options_.max_control_frames},
@@ -66,16 +66,34 @@ void process_host::write_stats_json(const std::string& path) const {
     // The game's scoreboard (an empty array under sandbox rules), as arena-replay --scoreboard prints it.
     std::vector<rules::score_line> lines;
     std::vector<std::string> names;
-    for (const match::match::named_score& s : match_.scoreboard()) {
+    for (const match::match::named_score& s : matches_.default_match().scoreboard()) {
         lines.push_back(s.line);
         names.push_back(s.name);
     }
     j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
     // The player the rules declare the winner, as every client's last Bye says (0: nobody).
-    j["winner"] = match_.game_rules().winner();
+    j["winner"] = matches_.default_match().game_rules().winner();
     stats_json_sink figures(j);
-    report(match_.counters(), figures);
+    report(matches_.default_match().counters(), figures);
     report(p, figures);
+    // Every match that ran (the running ones first, the default one first), with its own figures
+    // and scoreboard.
+    nlohmann::json matches = nlohmann::json::array();
+    for (const match_summary& s : matches_.summaries()) {
+        std::vector<rules::score_line> board;
+        std::vector<std::string> board_names;
+        for (const match::match::named_score& n : s.scoreboard) {
+            board.push_back(n.line);
+            board_names.push_back(n.name);
+        }
+        nlohmann::json one = {{"id", s.id}, {"mode", s.mode}, {"ended", s.ended}, {"winner", s.winner}};
+        one["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(board, board_names));
+        stats_json_sink match_figures(one);
+        report(s.counters, match_figures);
+        matches.push_back(std::move(one));
+    }
+    j["matches"] = std::move(matches);
+    j["matches_created"] = matches_.created();
     std::ofstream out(path);
     out << j.dump(2) << "\n";
     if (!out) log_line("cannot write stats to %s", path.c_str());

@@ -1,31 +1,143 @@
 #pragma once
-// The matches this process hosts, by id. Today there is one, the default, and every
-// connection belongs to it; a later change hosts many. The intake and the transports already
-// ask here for a connection's match instead of holding one, so that routing by match id
-// changes this file and not them.
+// The matches this process hosts. The default match lives as long as the process and takes
+// every client that names neither a match nor a mode, as a server of one match always did;
+// a Hello that names a match (Hello.match) joins it, one that names a mode (Hello.mode) joins
+// the fullest open match of that mode with a seat or creates one (join-or-create), and the
+// lobby creates them on request. A match created on demand ends when its rules end it, when
+// its mode's duration is up, when it has been empty for the empty-match time, or when it
+// throws: it says Bye to its clients, its slot is freed, and its neighbours never notice.
+//
+// A connection is the default match's until its Hello moves it (connection::match_key); the
+// intake and the transports ask here for a connection's match and never hold one. No sockets
+// and no clock: the host hands the clock in where a tick is timed.
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
 
+#include "server/config/modes.hpp"
 #include "server/match/match.hpp"
 
 namespace arena::host {
 
-using match_id = uint32_t;
-inline constexpr match_id default_match_id = 0;
+inline constexpr std::string_view default_match_id = "default";
+
+// One hosted match and what the process knows of it.
+struct hosted_match {
+    uint64_t key = 0;        // connection::match_key; 0 is the default match
+    std::string id;          // its public id (Hello.match, the lobby's URLs): unguessable but for the default
+    std::string mode;        // the mode it plays
+    bool on_demand = false;  // created by a Hello's mode or the lobby: it ends when empty
+    bool listed = true;      // false: private, left out of the lobby's list (its id is the invitation)
+    int64_t created_unix_ms = 0;
+    std::string creator;       // the address whose Hello or lobby request created it ("": the process)
+    uint32_t empty_ticks = 0;  // ticks since it last had a client
+    uint32_t end_tick = 0;     // its mode's duration ends it at this tick; 0: no limit
+    std::unique_ptr<match::match> game;
+};
+
+// What a match that ran leaves behind, for the stats (--stats-json's "matches").
+struct match_summary {
+    std::string id;
+    std::string mode;
+    std::string ended;  // why it ended; "" while it runs
+    match::match_counters counters;
+    std::vector<match::match::named_score> scoreboard;
+    uint32_t winner = 0;
+};
+
+struct registry_options {
+    match::match_config base;              // every match's config; its mode's capacity overrides max_players
+    std::vector<config::mode> modes;       // what Hello.mode and the lobby may name
+    std::string default_mode;              // the default match's mode (one of modes)
+    uint32_t max_matches = 1;              // matches at once, the default one included
+    uint32_t empty_match_ticks = 30 * 60;  // a match created on demand ends after this many ticks empty
+    // Matches one address may have created that still run: one address cannot take the slots.
+    uint32_t max_matches_per_address = 4;
+    // At max_matches, a match created on demand that has been empty this long gives its slot up
+    // to a new one: creating and leaving matches cannot starve the joins that need one.
+    uint32_t reclaim_empty_ticks = 5 * 60;
+    // The wall clock, ms since the epoch, for a match's "created" (unset: 0, as in tests).
+    std::function<int64_t()> wall_clock_ms;
+};
+
+// A registry of one match that plays `world` under `config` (mode "custom"): a test's, a tool's.
+registry_options one_match(const match::match_config& config, const world::world_config& world);
 
 class match_registry {
 public:
-    // `default_match` outlives the registry (the host, or a test, owns it).
-    explicit match_registry(match::match& default_match) : default_(default_match) {}
+    // `log` receives every match's lines (a match created on demand prefixes its id);
+    // `check_token` verifies signed join tokens for every match. Throws when the default
+    // match cannot start (a bad config: the process should not either).
+    match_registry(registry_options options, match::logger::sink log = {}, match::token_check check_token = {});
 
-    // The match `id` names; nullptr when this process hosts none by that id.
-    match::match* find(match_id id) { return id == default_match_id ? &default_ : nullptr; }
-    // The match `c` belongs to: today always the default one.
-    match::match& match_of(const match::connection& /*c*/) { return default_; }
-    match::match& default_match() { return default_; }
-    const match::match& default_match() const { return default_; }
+    match::match& default_match() { return *default_->game; }
+    const match::match& default_match() const { return *default_->game; }
+    // The match with this public id, or nullptr.
+    hosted_match* find(std::string_view id);
+    // The match `c` belongs to. A connection whose match has ended is routed to the default
+    // match, which knows it not and so ignores what it sends.
+    match::match& match_of(const match::connection& c);
+    // `c`'s Hello, before its current match reads it: the match that should take it. With
+    // Hello.match or Hello.mode set, `c` is moved there (released by its current match,
+    // connected to the new one); nullptr: refused, its Reject on its way.
+    match::match* route_hello(match::connection& c, const protocol::hello_msg& hello);
+    // A new match of `mode`, listed or private, created for `creator` (an address; "": the
+    // process itself): the entry, or why not (mode_unknown, no_room_for_match: the process or
+    // the address holds as many as it may, or a config that does not start). At max_matches
+    // it first ends the match created on demand that has been empty longest, if that is at
+    // least reclaim_empty_ticks.
+    std::variant<hosted_match*, match::rejection> create(std::string_view mode, bool listed,
+                                                         std::string_view creator = {});
+
+    // One tick of every match, in the order they were created, each timed with `now_ns` and
+    // reported to `ticked`; then the matches created on demand that ended are said Bye to and
+    // forgotten. An exception from a match's tick ends that match alone (the default match's
+    // is rethrown: the process cannot go on without it).
+    void tick_all(const std::function<int64_t()>& now_ns,
+                  const std::function<void(const hosted_match&, int64_t spent_ns)>& ticked = {});
+    // Why the default match is over ("" while it plays): its rules ended it, or its mode's
+    // duration is up. The process then shuts down.
+    std::string default_match_over() const;
+    // Bye(reason) to every client of every match: the process is shutting down.
+    void shut_down(std::string_view reason);
+
+    // The matches now, in creation order.
+    const std::map<uint64_t, hosted_match>& matches() const { return matches_; }
+    size_t size() const { return matches_.size(); }
+    const registry_options& options() const { return options_; }
+    // The matches that ran: those running (the default one first), then those that ended (the
+    // newest max_summaries of them).
+    std::vector<match_summary> summaries() const;
+    // Matches created, whole run, the default one included.
+    uint64_t created() const { return created_; }
+
+    static constexpr size_t max_summaries = 1000;
 
 private:
-    match::match& default_;
+    // Creates the match without checking the limit; throws what a bad config throws.
+    hosted_match& start(const config::mode& mode, bool on_demand, bool listed);
+    // The fullest open, listed match of `mode` in which `hello` has a seat; nullptr: none.
+    hosted_match* fullest_with_seat(std::string_view mode, const protocol::hello_msg& hello);
+    void end(std::map<uint64_t, hosted_match>::iterator it, const std::string& why);
+    // Ends the longest-empty match created on demand, if it has been empty long enough.
+    bool reclaim_empty();
+    std::string new_id();
+    match_summary summary_of(const hosted_match& m, std::string ended) const;
+
+    registry_options options_;
+    match::logger::sink log_;
+    match::token_check check_token_;
+    std::map<uint64_t, hosted_match> matches_;  // by key: creation order
+    hosted_match* default_ = nullptr;
+    uint64_t next_key_ = 0;
+    uint64_t created_ = 0;
+    std::vector<match_summary> ended_;
+    uint64_t id_state_;  // the id generator's (seeded from the system's entropy)
 };
 
 }  // namespace arena::host

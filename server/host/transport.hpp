@@ -12,6 +12,7 @@
 
 #include "server/host/host_options.hpp"
 #include "server/host/intake.hpp"
+#include "server/host/lobby.hpp"
 #include "server/host/match_registry.hpp"
 #include "server/ops/process_counters.hpp"
 
@@ -25,6 +26,8 @@ public:
     // Every frame a client sends goes through the intake; its connection's match is the registry's.
     virtual host::intake& intake() = 0;
     virtual match_registry& matches() = 0;
+    // A request to the lobby (GET and POST /matches), with the server's token rules.
+    virtual lobby_answer lobby(const lobby_request& request) = 0;
     // The process's counters: bytes and messages out, UDP's own figures.
     virtual ops::process_counters& counters() = 0;
     // The steady clock, ns: arrival times, stalls, timeouts.

@@ -116,6 +116,9 @@ std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::h
     if (hello.token.size() > limits_.max_token_bytes)
         return rejection{RejectCode::bad_request,
                          "token longer than " + std::to_string(limits_.max_token_bytes) + " bytes"};
+    if (hello.match.size() > limits_.max_match_bytes || hello.mode.size() > limits_.max_match_bytes)
+        return rejection{RejectCode::bad_request,
+                         "match or mode longer than " + std::to_string(limits_.max_match_bytes) + " bytes"};
     // Open: the token is the client's own key. A spectator holds no identity: it has nothing
     // to reconnect to and takes nobody over.
     if (!check_token_) return admitted_hello{hello.name, hello.spectator ? "" : hello.token, hello.spectator};

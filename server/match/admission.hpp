@@ -45,6 +45,7 @@ struct admission_limits {
         std::chrono::seconds(5);         // a joined client may go this long without an Input; 0: never
     uint32_t max_name_bytes = 64;        // Hello.name, bytes
     uint32_t max_token_bytes = 1024;     // Hello.token, bytes
+    uint32_t max_match_bytes = 64;       // Hello.match and Hello.mode, bytes each
     uint32_t max_inputs_per_second = 0;  // 0: 2 × tick_rate + 10
     // Inputs at the limit a client may send at once, as the time they span: what the kernel
     // holds after the server (or the network) stood still this long arrives together and must

@@ -46,6 +46,11 @@ public:
         const size_t colon = p.rfind(':');
         return colon == std::string_view::npos ? p : p.substr(0, colon);
     }
+
+    // Which of the process's matches this connection belongs to, as the host's match registry
+    // numbers them (server/host/match_registry.hpp): 0, the default match, until a Hello moves
+    // it. The registry alone reads and writes it; a match never looks at it.
+    uint64_t match_key = 0;
 };
 
 }  // namespace arena::match

@@ -38,6 +38,8 @@ struct match_config {
     admission_limits admission{};  // players, spectators, connections, time-outs, message limits
     uint32_t input_buffer = 8;     // inputs waiting per player; more drop the oldest
     std::string preset;            // name sent in Welcome ("" for a config file)
+    std::string match_id;          // this match's id in its process (Welcome.match)
+    std::string mode;              // the mode it plays (Welcome.mode; server/config/modes.hpp)
     uint64_t seed = 1;
     double reconnect_grace_s = 10;  // a dropped player's body waits this long for it
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
@@ -98,6 +100,12 @@ public:
     // Ends `c` with this Reject: bytes its transport could not frame or verify, output that
     // does not drain.
     void reject(connection& c, const rejection& why);
+    // Lets a connection that has not said Hello go to another match of the process (the
+    // host's match registry moves it on its Hello): forgotten here without a word, a close or a
+    // count; the other match connects it. Nothing for a connection past its Hello.
+    void release(connection& c);
+    // Whether `c` is a connection of this match that has not said Hello yet.
+    [[nodiscard]] bool waiting_for_hello(const connection& c) const;
     // `c` ended by itself (end of stream, a socket error): a joined player's body waits
     // reconnect_grace_s for the same identity.
     void disconnect(connection& c, const close_cause& cause);
@@ -106,6 +114,10 @@ public:
     void shut_down(std::string_view reason);
     // True once a player's score reached match_config::score_limit: the server shuts down.
     [[nodiscard]] bool over() const { return over_; }
+    // The refusal `hello` would meet from the Hello and capacity rules now (admission's
+    // admit_hello, then admit_join or admit_spectator), without joining: how a process with
+    // many matches picks one with a seat. A reconnection or takeover always has its seat.
+    [[nodiscard]] std::optional<rejection> seat_refusal(const protocol::hello_msg& hello) const;
     // The result the last Bye carries (over is false under rules that keep no score).
     [[nodiscard]] protocol::match_result result() const;
 
@@ -187,6 +199,7 @@ private:
     // A new player needs a slot held by a body in the reconnect grace: the oldest one goes.
     void give_up_oldest_in_grace();
     player_map::iterator find_identity(const std::string& identity);
+    player_map::const_iterator find_identity(const std::string& identity) const;
     // Forgets `it`: counts why it closed, and its player leaves or waits for a reconnection.
     void forget(client_map::iterator it, const close_cause& cause);
     void leave(player_map::iterator it, const close_cause& cause);

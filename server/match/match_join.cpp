@@ -33,6 +33,18 @@ bool match::connect(connection& c) {
     return true;
 }
 
+void match::release(connection& c) {
+    auto it = clients_.find(&c);
+    if (it == clients_.end() || it->second.standing.at != client_standing::stage::awaiting_hello) return;
+    --awaiting_hello_;
+    clients_.erase(it);
+}
+
+bool match::waiting_for_hello(const connection& c) const {
+    const auto it = clients_.find(&c);
+    return it != clients_.end() && it->second.standing.at == client_standing::stage::awaiting_hello;
+}
+
 connection* match::oldest_waiting_of_busiest_address(const connection* newcomer) const {
     std::unordered_map<std::string_view, size_t> waiting;  // by address
     for (const auto& [c, cl] : clients_)
@@ -166,6 +178,23 @@ match::player_map::iterator match::find_identity(const std::string& identity) {
     return players_.end();
 }
 
+match::player_map::const_iterator match::find_identity(const std::string& identity) const {
+    return const_cast<match*>(this)->find_identity(identity);
+}
+
+std::optional<rejection> match::seat_refusal(const protocol::hello_msg& hello) const {
+    auto who = admission_.admit_hello(hello, draining_);
+    if (auto* no = std::get_if<rejection>(&who)) return *no;
+    const admitted_hello& admitted = std::get<admitted_hello>(who);
+    if (admitted.spectator) return admission_.admit_spectator(spectators_.size());
+    const auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
+    const std::optional<bool> same_connected =
+        same == players_.end() ? std::nullopt : std::optional<bool>(same->second.who != nullptr);
+    auto verdict = admission_.admit_join(same_connected, live_player_count());
+    if (auto* no = std::get_if<rejection>(&verdict)) return *no;
+    return std::nullopt;
+}
+
 protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) const {
     protocol::welcome_info welcome;
     welcome.player_id = player_id;
@@ -179,6 +208,8 @@ protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) 
     welcome.world_version = world::world_version;
     welcome.view_radius = config_.view_radius;
     welcome.statics = static_geometry(world_, kinds_);
+    welcome.match = config_.match_id;
+    welcome.mode = config_.mode;
     return welcome;
 }
 

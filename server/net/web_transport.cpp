@@ -23,6 +23,7 @@ struct http_conn {
     explicit http_conn(tcp::socket socket) : stream(std::move(socket)) {}
     beast::tcp_stream stream;
     http::request<http::empty_body> request;  // once its head is read
+    std::string body;                         // a lobby POST's (the only request with one)
     std::list<std::shared_ptr<http_conn>>::iterator waiting_at;
     std::list<std::shared_ptr<http_conn>>::iterator download_at;
     std::shared_ptr<ops::file_progress> progress = std::make_shared<ops::file_progress>();
@@ -215,7 +216,8 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
     conn->stream.expires_after(game.match.admission.handshake_timeout);
     http::request_parser<http::empty_body> parser;
     parser.header_limit(static_cast<uint32_t>(options_.max_request_bytes));
-    parser.body_limit(0);  // GET has no body
+    // A body is read only for a lobby POST (below); a larger one is refused with the head.
+    parser.body_limit(host::max_lobby_body_bytes);
     beast::flat_buffer buffer(options_.max_request_bytes);
     boost::system::error_code ec;
     // The head only: a request that announces a body (chunked, or a Content-Length) is refused
@@ -230,7 +232,22 @@ boost::asio::awaitable<void> web_transport::serve(std::shared_ptr<http_conn> con
     if (evicted) co_return;  // a newer connection took the slot
 
     std::optional<http::response<http::string_body>> reply;
-    if (!ec && !parser.is_done()) {
+    // A lobby POST may carry a small body (POST /matches: {"mode": ...}); it is read whole
+    // within the same deadline, up to host::max_lobby_body_bytes.
+    if (!ec && !parser.is_done() && parser.get().method() == http::verb::post &&
+        host::is_lobby_path(std::string_view(parser.get().target()).substr(0, parser.get().target().find('?'))) &&
+        parser.content_length() && *parser.content_length() <= host::max_lobby_body_bytes) {
+        http::request_parser<http::string_body> with_body(std::move(parser));
+        with_body.body_limit(host::max_lobby_body_bytes);
+        co_await http::async_read(conn->stream, buffer, with_body, use_ec(ec));
+        if (!*alive) co_return;
+        if (!ec) {
+            conn->body = std::move(with_body.get().body());
+            conn->request = http::request<http::empty_body>(std::move(with_body.get().base()));
+            co_await answer(conn, peer, {});
+            co_return;
+        }
+    } else if (!ec && !parser.is_done()) {
         host::log_line("http: %s: refused a request with a body (Transfer-Encoding or Content-Length)", peer.c_str());
         reply = text_response(400, "text/plain; charset=utf-8", "a request body is not accepted\n");
     } else if (ec) {
@@ -305,6 +322,14 @@ boost::asio::awaitable<void> web_transport::answer(std::shared_ptr<http_conn> co
             co_await session->run(std::move(conn->request), std::move(leftover));
             co_return;
         }
+    } else if (host::is_lobby_path(path)) {
+        boost::system::error_code address_ec;
+        const auto remote = conn->stream.socket().remote_endpoint(address_ec);
+        const host::lobby_answer a = host_.lobby({std::string(request.method_string()), path, std::move(conn->body),
+                                                  address_ec ? peer : remote.address().to_string(),
+                                                  std::string(request[http::field::authorization])});
+        reply = text_response(a.status, a.content_type, a.body);
+        if (a.status == 405) reply->set(http::field::allow, path == "/matches" ? "GET, HEAD, POST" : "GET, HEAD");
     } else if ((path == "/metrics" && options_.serve_metrics) || path == "/healthz") {
         const ops::http_response r = ops::route({std::string(request.method_string()), path}, handlers_);
         reply = text_response(r.status, r.content_type, r.body);

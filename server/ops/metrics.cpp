@@ -46,6 +46,17 @@ void render_tick(text_writer& w, const server_metrics& m) {
     gauge(w, "arena_tick_budget_seconds", "Time one tick may take at the configured tick rate.", m.tick_budget_s);
 }
 
+void render_modes(text_writer& w, const server_metrics& m) {
+    if (m.modes.empty()) return;
+    w.family("arena_matches", "gauge", "Matches running now, by mode.");
+    for (const auto& [mode, f] : m.modes) w.sample("arena_matches", f.matches, {{"mode", mode}});
+    w.family("arena_players", "gauge", "Players with a live connection now, by mode.");
+    for (const auto& [mode, f] : m.modes) w.sample("arena_players", f.players, {{"mode", mode}});
+    w.family("arena_match_tick_duration_seconds", "histogram", "Time one match spends in one world step, by mode.");
+    for (const auto& [mode, f] : m.modes)
+        w.histogram_samples("arena_match_tick_duration_seconds", f.tick_duration_s, {{"mode", mode}});
+}
+
 void render_lifecycle(text_writer& w, const server_metrics& m) {
     gauge(w, "arena_draining", "1 while the server shuts down and admits no new players.", m.draining ? 1 : 0);
     w.family("arena_build_info", "gauge", "Always 1; the labels say which build is running.");
@@ -73,6 +84,7 @@ const char* build_version() {
 std::string render_metrics(const server_metrics& m) {
     text_writer w;
     render_tick(w, m);
+    render_modes(w, m);
     if (m.figures) {
         metrics_sink figures(w);
         m.figures(figures);

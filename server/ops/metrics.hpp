@@ -9,6 +9,7 @@
 // a new time series, and players come and go by the thousand.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "server/match/figures.hpp"
@@ -17,11 +18,20 @@
 
 namespace arena::ops {
 
+// One mode's matches now (labels by mode only, never by match id: a bounded number of series).
+struct mode_figures {
+    uint64_t matches = 0;
+    uint64_t players = 0;                                  // with a live connection, in every match of the mode
+    histogram tick_duration_s{tick_duration_buckets_s()};  // one match's step, seconds
+};
+
 struct server_metrics {
     // Tick loop.
     histogram tick_duration_s{tick_duration_buckets_s()};  // seconds per world step
     double tick_budget_s = 0;                              // 1 / tick rate, seconds
-    // Every counter and gauge of the match and the process, through their report()s.
+    // By mode: arena_matches, arena_players, arena_match_tick_duration_seconds.
+    std::map<std::string, mode_figures> modes;
+    // Every counter and gauge of the default match and the process, through their report()s.
     std::function<void(match::figure_sink&)> figures;
     // Lifecycle.
     bool draining = false;  // shutting down: no new players

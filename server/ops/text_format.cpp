@@ -88,17 +88,26 @@ void text_writer::sample(std::string_view name, uint64_t value, const label_list
 
 void text_writer::histogram_family(std::string_view name, std::string_view help, const histogram& h) {
     family(name, "histogram", help);
+    histogram_samples(name, h, {});
+}
+
+void text_writer::histogram_samples(std::string_view name, const histogram& h, const label_list& labels) {
     const std::string base(name);
     uint64_t cumulative = 0;
     const auto& bounds = h.upper_bounds();
     const auto& counts = h.bucket_counts();
+    auto with = [&labels](std::string key, std::string value) {
+        label_list all = labels;
+        all.emplace_back(std::move(key), std::move(value));
+        return all;
+    };
     for (size_t i = 0; i < bounds.size(); ++i) {
         cumulative += counts[i];
-        sample(base + "_bucket", cumulative, {{"le", format_number(bounds[i])}});
+        sample(base + "_bucket", cumulative, with("le", format_number(bounds[i])));
     }
-    sample(base + "_bucket", h.count(), {{"le", "+Inf"}});
-    sample(base + "_sum", h.sum());
-    sample(base + "_count", h.count());
+    sample(base + "_bucket", h.count(), with("le", "+Inf"));
+    sample(base + "_sum", h.sum(), labels);
+    sample(base + "_count", h.count(), labels);
 }
 
 }  // namespace arena::ops

@@ -22,6 +22,8 @@ public:
     void sample(std::string_view name, uint64_t value, const label_list& labels = {});
     // A whole histogram family: cumulative _bucket{le=...} lines, then _sum and _count.
     void histogram_family(std::string_view name, std::string_view help, const histogram& h);
+    // One labelled histogram's lines, in a family already opened with family(name, "histogram", ...).
+    void histogram_samples(std::string_view name, const histogram& h, const label_list& labels);
 
     const std::string& text() const { return out_; }
 

@@ -27,7 +27,7 @@ struct match_sim::sim_client {
 };
 
 match_sim::match_sim(const match::match_config& config, const world::world_config& world, const sim_options& options)
-    : game_(config, world), options_(options) {
+    : matches_(host::one_match(config, world)), options_(options) {
     dice phases(link_seed(options.seed, ~0ULL));
     const sim_time period = 1'000'000'000ULL / config.tick_rate;
     for (std::uint32_t i = 0; i < options.clients; ++i) {
@@ -72,7 +72,7 @@ const path& match_sim::down(std::size_t i) const {
 }
 
 sim_time match_sim::server_tick_time(std::uint64_t tick) const {
-    return tick * 1'000'000'000ULL / game_.config().tick_rate;
+    return tick * 1'000'000'000ULL / matches_.default_match().config().tick_rate;
 }
 
 void match_sim::flush(sim_client& c) {
@@ -107,7 +107,7 @@ void match_sim::refresh(sim_client& c) {
 }
 
 void match_sim::step(sim_time horizon) {
-    const sim_time period = 1'000'000'000ULL / game_.config().tick_rate;
+    const sim_time period = 1'000'000'000ULL / matches_.default_match().config().tick_rate;
     sim_time next = std::min(horizon, server_tick_time(ticks_ + 1));
     for (const auto& c : clients_) next = std::min(next, c->wake);
     now_ = std::max(now_, next);
@@ -141,7 +141,7 @@ void match_sim::step(sim_time horizon) {
     }
     const bool match_ticks = now_ == server_tick_time(ticks_ + 1);
     if (match_ticks) {
-        game_.tick();
+        matches_.tick_all([] { return int64_t{0}; });
         ++ticks_;
     }
     for (const auto& c : clients_) {

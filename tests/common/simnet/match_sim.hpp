@@ -46,7 +46,9 @@ public:
     // more virtual time passed; true when all closed.
     bool finish(sim_time limit = 30'000 * ms);
 
-    [[nodiscard]] arena::match::match& match() { return game_; }
+    [[nodiscard]] arena::match::match& match() { return matches_.default_match(); }
+    // Every match of the simulated process (Hello.mode and Hello.match create and join others).
+    [[nodiscard]] host::match_registry& matches() { return matches_; }
     [[nodiscard]] sim_time now() const { return now_; }
     [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
     [[nodiscard]] std::size_t size() const { return clients_.size(); }
@@ -65,10 +67,9 @@ private:
     void refresh(sim_client& c);
     [[nodiscard]] sim_time server_tick_time(std::uint64_t tick) const;
 
-    arena::match::match game_;
     // The process's side of the server ends: their frames come in as a transport's do.
     ops::process_counters counters_;
-    host::match_registry matches_{game_};
+    host::match_registry matches_;
     host::intake intake_{matches_, counters_};
     sim_options options_;
     bots::client_shared shared_;

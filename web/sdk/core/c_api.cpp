@@ -140,6 +140,12 @@ ARENA_API const char* arena_error(const client* c) {
 ARENA_API std::uint32_t arena_hello(client* c, const char* name, const char* token) {
     return out_size(c->session.hello(name, token));
 }
+
+// The Hello that joins the match `match`, or joins or creates one of mode `mode` (either may be "").
+ARENA_API std::uint32_t arena_hello_to(client* c, const char* name, const char* token, const char* match,
+                                       const char* mode) {
+    return out_size(c->session.hello(name, token, match, mode));
+}
 ARENA_API std::uint32_t arena_input(client* c, float thrust, float turn, int buttons) {
     return out_size(c->session.input(thrust, turn, static_cast<std::uint8_t>(buttons)));
 }

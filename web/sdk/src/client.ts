@@ -38,6 +38,11 @@ export interface ConnectOptions {
   /** Watch the match without a body (Hello.spectator, default false): the server sends the
    *  whole world and the scoreboard; input() does nothing and stateAt().own is null. */
   spectate?: boolean;
+  /** Join the match with this id (Hello.match; the lobby lists them, docs/MATCHES.md). */
+  match?: string;
+  /** Join the fullest open match of this mode with a seat, or create one (Hello.mode). With
+   *  neither, the server's default match. */
+  mode?: string;
   interpolation?: Partial<InterpolationOptions>;
   smoothing?: SmoothingOptions;
 }
@@ -118,7 +123,7 @@ export class ArenaClient {
     this.session = new CoreSession(core, options.deltaSnapshots ?? true, options.spectate ?? false);
     this.socket = socket;
     socket.binaryType = 'arraybuffer';
-    socket.onopen = () => socket.send(this.session.hello(name, token));
+    socket.onopen = () => socket.send(this.session.hello(name, token, options.match ?? '', options.mode ?? ''));
     socket.onmessage = (ev) => this.receive(ev.data);
     socket.onclose = () => this.finish({ reason: 'connection closed', matchOver: false, winner: 0, scoreboard: [] });
     socket.onerror = () => this.finish({ reason: 'connection failed', matchOver: false, winner: 0, scoreboard: [] });

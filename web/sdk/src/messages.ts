@@ -37,6 +37,10 @@ export interface WelcomeFields {
   preset: string;
   worldConfig: string;
   viewRadius: number;
+  /** The id of the match joined ('default' for the server's default match). */
+  match: string;
+  /** The mode it plays. */
+  mode: string;
 }
 
 export interface SnapshotExtras {
@@ -73,6 +77,8 @@ export function readWelcome(m: Message): WelcomeFields {
     preset: (w.preset() as string | null) ?? '',
     worldConfig: (w.worldConfig() as string | null) ?? '',
     viewRadius: w.viewRadius(),
+    match: (w.match() as string | null) ?? '',
+    mode: (w.mode() as string | null) ?? '',
   };
 }
 

@@ -64,8 +64,12 @@ export class CoreSession {
   private out(size: number): Uint8Array {
     return this.core.bytes(this.core.module._arena_out(this.handle), size);
   }
-  hello(name: string, token: string): Uint8Array {
-    return this.out(this.core.withStrings([name, token], (n, t) => this.core.module._arena_hello(this.handle, n, t)));
+  /** The Hello; `match` joins that match, `mode` joins or creates one of that mode (both
+   *  empty: the server's default match). */
+  hello(name: string, token: string, match = '', mode = ''): Uint8Array {
+    return this.out(
+      this.core.withStrings([name, token, match, mode], (n, t, m, d) => this.core.module._arena_hello_to(this.handle, n, t, m, d)),
+    );
   }
   /** Numbers and predicts the input; an empty frame before the Welcome, after the end, for
    *  a spectator, and for a tick the input pacing leaves out (inputsLeftOut counts those):

@@ -1,0 +1,256 @@
+// Many matches in one registry, driven through the intake as a transport drives it:
+// join-or-create by mode, joining by id, the refusals, the end of an empty match, and a match
+// whose tick throws ending alone.
+#include <catch2/catch.hpp>
+#include <stdexcept>
+
+#include "protocol/decode.hpp"
+#include "protocol/messages.hpp"
+#include "protocol/verify.hpp"
+#include "server/host/intake.hpp"
+#include "server/host/match_registry.hpp"
+#include "server/world/presets.hpp"
+
+using namespace arena;
+
+namespace {
+
+struct fake_client : match::connection {
+    std::vector<protocol::frame_bytes> frames;
+    std::optional<protocol::RejectCode> rejected;
+    std::string reason;
+    std::string bye;
+    bool throw_on_snapshot = false;
+    void send(protocol::frame_bytes frame) override { frames.push_back(std::move(frame)); }
+    void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
+        send_snapshot_frame(s.frame_with_ack(ack));
+    }
+    void send_snapshot_frame(std::span<const uint8_t>) override {
+        if (throw_on_snapshot) throw std::runtime_error("a snapshot send failed");
+    }
+    void close(protocol::RejectCode code, std::string_view why) override {
+        rejected = code;
+        reason = why;
+    }
+    void close_with_bye(std::string_view why) override { bye = why; }
+    std::string_view peer() const override { return "127.0.0.1:1"; }
+
+    // The Welcome among the frames it was sent, if any.
+    std::optional<protocol::welcome_info> welcome() const {
+        for (const protocol::frame_bytes& f : frames) {
+            auto m = protocol::verify_message(f, protocol::server_frame_limits);
+            if (!m || m.value->payload_type() != protocol::Payload::Welcome) continue;
+            auto w = protocol::decode_welcome(*m.value);
+            if (w) return w.value;
+        }
+        return std::nullopt;
+    }
+};
+
+host::registry_options options(uint32_t max_matches = 8) {
+    host::registry_options o;
+    o.base.tick_rate = 60;
+    o.base.snapshot_rate = 20;
+    o.modes = config::builtin_modes();
+    config::mode duel{"duel", world::asteroids_preset(), "asteroids", 2, 0};
+    o.modes.push_back(duel);
+    o.default_mode = "asteroids";
+    o.max_matches = max_matches;
+    o.empty_match_ticks = 30;
+    return o;
+}
+
+struct process {
+    explicit process(host::registry_options o = options()) : matches(std::move(o)) {}
+    host::match_registry matches;
+    ops::process_counters counters;
+    host::intake in{matches, counters};
+
+    // Connects `c` as a transport does and sends its Hello; then one tick of every match so
+    // that a player's Welcome goes out.
+    void join(fake_client& c, const std::string& name, const std::string& match_id, const std::string& mode,
+              bool spectator = false) {
+        matches.match_of(c).connect(c);
+        const protocol::frame_bytes hello =
+            protocol::encode_hello({protocol::protocol_version, name, "", true, spectator, match_id, mode});
+        in.take(c, hello, std::nullopt);
+        tick();
+    }
+    void tick() {
+        matches.tick_all([] { return int64_t{0}; });
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a Hello naming neither a match nor a mode joins the default match", "[registry]") {
+    process p;
+    fake_client c;
+    p.join(c, "ada", "", "");
+    REQUIRE(c.welcome());
+    CHECK(c.welcome()->match == "default");
+    CHECK(c.welcome()->mode == "asteroids");
+    CHECK(p.matches.size() == 1);
+    CHECK(p.matches.default_match().live_player_count() == 1);
+}
+
+TEST_CASE("join-or-create fills a mode's match before it creates the next", "[registry]") {
+    process p;
+    fake_client a, b, c;
+    p.join(a, "a", "", "duel");
+    p.join(b, "b", "", "duel");
+    p.join(c, "c", "", "duel");
+    REQUIRE(a.welcome());
+    REQUIRE(b.welcome());
+    REQUIRE(c.welcome());
+    CHECK(a.welcome()->mode == "duel");
+    CHECK(a.welcome()->match == b.welcome()->match);  // a duel holds two
+    CHECK(c.welcome()->match != a.welcome()->match);  // the third starts the next
+    CHECK(a.welcome()->match.size() == 16);           // 64 random bits, in hex
+    CHECK(p.matches.size() == 3);                     // the default and two duels
+    CHECK(p.matches.default_match().connection_count() == 0);
+    CHECK(p.matches.find(a.welcome()->match)->game->live_player_count() == 2);
+}
+
+TEST_CASE("join-or-create picks the fullest open match of the mode", "[registry]") {
+    process p;
+    auto made = p.matches.create("asteroids", true);  // an empty one, created first
+    REQUIRE(std::holds_alternative<host::hosted_match*>(made));
+    const std::string empty_id = std::get<host::hosted_match*>(made)->id;
+    fake_client first, second;
+    p.join(first, "first", "", "");  // the default match, also asteroids, now holds one
+    p.join(second, "second", "", "asteroids");
+    REQUIRE(second.welcome());
+    CHECK(second.welcome()->match == "default");
+    CHECK(second.welcome()->match != empty_id);
+}
+
+TEST_CASE("a private match is joined by its id, never by its mode", "[registry]") {
+    process p;
+    auto made = p.matches.create("duel", false);
+    REQUIRE(std::holds_alternative<host::hosted_match*>(made));
+    const std::string id = std::get<host::hosted_match*>(made)->id;
+    fake_client stranger, friend_;
+    p.join(stranger, "stranger", "", "duel");
+    REQUIRE(stranger.welcome());
+    CHECK(stranger.welcome()->match != id);
+    p.join(friend_, "friend", id, "");
+    REQUIRE(friend_.welcome());
+    CHECK(friend_.welcome()->match == id);
+}
+
+TEST_CASE("joining by id refuses an unknown match, a full one and the wrong mode", "[registry]") {
+    process p;
+    fake_client a, b;
+    p.join(a, "a", "", "duel");
+    p.join(b, "b", "", "duel");
+    const std::string id = a.welcome()->match;
+
+    fake_client nowhere, late, wrong;
+    p.join(nowhere, "n", "0123456789abcdef", "");
+    CHECK(nowhere.rejected == protocol::RejectCode::no_such_match);
+    p.join(late, "late", id, "");
+    CHECK(late.rejected == protocol::RejectCode::match_full);
+    CHECK(late.reason.find("2 players") != std::string::npos);
+    p.join(wrong, "w", id, "sandbox");
+    CHECK(wrong.rejected == protocol::RejectCode::no_such_match);
+
+    // A spectator still finds room to watch the full match.
+    fake_client eye;
+    p.join(eye, "eye", id, "", true);
+    CHECK_FALSE(eye.rejected);
+    REQUIRE(eye.welcome());
+    CHECK(eye.welcome()->match == id);
+}
+
+TEST_CASE("an unknown mode and a process at its match limit are refused with their codes", "[registry]") {
+    process p(options(2));
+    fake_client unknown, a, b, c;
+    p.join(unknown, "u", "", "chess");
+    CHECK(unknown.rejected == protocol::RejectCode::mode_unknown);
+    CHECK(unknown.reason.find("duel") != std::string::npos);  // the modes it has
+    p.join(a, "a", "", "duel");
+    p.join(b, "b", "", "duel");
+    CHECK(a.welcome());
+    CHECK(b.welcome());
+    p.join(c, "c", "", "duel");  // both seats taken, and two matches is the limit
+    CHECK(c.rejected == protocol::RejectCode::no_room_for_match);
+    CHECK(p.matches.size() == 2);
+}
+
+TEST_CASE("a bad Hello is refused for what it is, whatever it asks to join", "[registry]") {
+    process p;
+    fake_client c;
+    p.matches.match_of(c).connect(c);
+    p.in.take(c, protocol::encode_hello({protocol::protocol_version + 1, "old", "", true, false, "", "duel"}),
+              std::nullopt);
+    CHECK(c.rejected == protocol::RejectCode::version_mismatch);
+    CHECK(p.matches.size() == 1);  // no match was created for it
+
+    fake_client long_mode;
+    p.matches.match_of(long_mode).connect(long_mode);
+    p.in.take(long_mode, protocol::encode_hello({protocol::protocol_version, "x", "", true, false, "", std::string(65, 'm')}),
+              std::nullopt);
+    CHECK(long_mode.rejected == protocol::RejectCode::bad_request);
+}
+
+TEST_CASE("a second Hello with a mode does not move a joined player", "[registry]") {
+    process p;
+    fake_client c;
+    p.join(c, "ada", "", "");
+    REQUIRE(c.welcome());
+    p.in.take(c, protocol::encode_hello({protocol::protocol_version, "ada", "", true, false, "", "duel"}),
+              std::nullopt);
+    CHECK(c.rejected == protocol::RejectCode::bad_request);  // the default match refuses it, as ever
+    CHECK(p.matches.size() == 1);
+}
+
+TEST_CASE("a match created on demand ends once empty for the empty-match time", "[registry]") {
+    process p;
+    fake_client c;
+    p.join(c, "ada", "", "duel");
+    const std::string id = c.welcome()->match;
+    REQUIRE(p.matches.find(id));
+    p.in.take(c, protocol::encode_bye("done"), std::nullopt);
+    for (int i = 0; i < 29; ++i) p.tick();
+    CHECK(p.matches.find(id));  // 30 ticks empty ends it (options()), not 29
+    p.tick();
+    CHECK_FALSE(p.matches.find(id));
+    CHECK(p.matches.size() == 1);
+    // What it sends now reaches the default match, which does not know it, and goes nowhere.
+    CHECK_FALSE(p.in.take(c, protocol::encode_ping(1), std::nullopt).go_on);
+    const auto summaries = p.matches.summaries();
+    REQUIRE(summaries.size() == 2);
+    CHECK(summaries[1].id == id);
+    CHECK(summaries[1].ended == "match ended (empty)");
+    CHECK(summaries[1].counters.joins == 1);
+}
+
+TEST_CASE("a match whose tick throws ends alone, and its neighbours play on", "[registry]") {
+    process p;
+    fake_client calm, doomed, neighbour;
+    p.join(calm, "calm", "", "");
+    p.join(doomed, "doomed", "", "duel");
+    p.join(neighbour, "neighbour", "", "sandbox");
+    const std::string doomed_id = doomed.welcome()->match;
+    doomed.throw_on_snapshot = true;  // its match's next snapshot tick throws
+    for (int i = 0; i < 3; ++i) p.tick();
+    CHECK_FALSE(p.matches.find(doomed_id));
+    CHECK(doomed.bye.find("its tick failed") != std::string::npos);
+    CHECK(p.matches.size() == 2);
+    const uint32_t before = p.matches.default_match().state().tick();
+    p.tick();
+    CHECK(p.matches.default_match().state().tick() == before + 1);
+    CHECK(p.matches.default_match().live_player_count() == 1);
+    CHECK_FALSE(calm.rejected);
+    CHECK_FALSE(neighbour.rejected);
+    CHECK(neighbour.bye.empty());
+}
+
+TEST_CASE("the default match's exception is the process's", "[registry]") {
+    process p;
+    fake_client c;
+    p.join(c, "ada", "", "");
+    c.throw_on_snapshot = true;
+    CHECK_THROWS_AS([&] { for (int i = 0; i < 3; ++i) p.tick(); }(), std::runtime_error);
+}
