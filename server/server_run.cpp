@@ -2,6 +2,8 @@
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -14,51 +16,91 @@ namespace arena {
 
 namespace {
 
-// --record: every tick goes to the file as the match runs; finished at shutdown. A write that
-// fails is logged once and the match goes on unrecorded.
-class match_recording {
+// --record: every tick goes to the file as the match runs; finished when the match ends or the
+// server shuts down. A FILE records the default match; a folder (one that exists, or a path
+// ending in '/') records every match, each to FOLDER/ID.arpl. A write that fails is logged once
+// and that match goes on unrecorded.
+class match_recordings {
 public:
-    // False: the file cannot be opened (said on stderr).
+    // False: the file (or the default match's, in a folder) cannot be opened (said on stderr).
     bool open(host::process_host& host, const cli::server_setup& setup) {
-        match::match& game = host.default_match();
-        const world::world& w = game.state();
-        const match::match_config& m = setup.host.match;
-        auto opened = replay::recorder::open(
-            setup.record, replay::make_header(w, m.preset, m.seed, m.tick_rate, setup.hash_interval));
-        if (!opened) {
-            std::fprintf(stderr, "arena-server: --record: %s\n", opened.error.c_str());
-            return false;
-        }
-        recorder_.emplace(std::move(opened.value));
-        game.on_tick = [this](const match::tick_record& r, uint64_t hash) {
-            if (auto s = recorder_->record_tick(r, hash); !s && !failed_) {
-                host::log_line("recording failed, the session goes on unrecorded: %s", s.error.c_str());
-                failed_ = true;
-            }
-        };
-        host.on_shutdown = [this, &game, path = setup.record] {
-            if (failed_) return;
-            // The state hash (the world's, then the rules'), as every recorded tick's.
-            const world::world& w = game.state();
-            const uint64_t end_hash = rules::state_hash(w, game.game_rules());
-            if (auto s = recorder_->finish(w.tick(), end_hash); !s)
-                host::log_line("recording failed at the end: %s", s.error.c_str());
-            else
-                host::log_line("recorded %u ticks to %s", w.tick(), path.c_str());
+        setup_ = &setup;
+        folder_ = cli::record_is_folder(setup.record);
+        if (folder_) std::filesystem::create_directories(setup.record);
+        bool opened = true;
+        host.matches().observe(
+            [this, &opened](host::hosted_match& m) {
+                if (m.key == 0 || folder_) opened = start(m) && opened;
+            },
+            [this](host::hosted_match& m, const std::string&) { finish(m.key, *m.game); });
+        if (!opened) return false;
+        host.on_shutdown = [this, &host] {
+            for (const auto& [key, m] : host.matches().matches()) finish(key, *m.game);
         };
         return true;
     }
 
 private:
-    std::optional<replay::recorder> recorder_;
-    bool failed_ = false;
+    struct one {
+        std::optional<replay::recorder> recorder;
+        std::string path;
+        bool failed = false;
+    };
+
+    bool start(host::hosted_match& m) {
+        const std::string path =
+            folder_ ? (std::filesystem::path(setup_->record) / (m.id + ".arpl")).string() : setup_->record;
+        match::match& game = *m.game;
+        const match::match_config& c = game.config();
+        auto opened = replay::recorder::open(
+            path, replay::make_header(game.state(), c.preset, c.seed, c.tick_rate, setup_->hash_interval));
+        if (!opened) {
+            if (m.key == 0) {
+                std::fprintf(stderr, "arena-server: --record: %s\n", opened.error.c_str());
+            } else {
+                host::log_line("match=%s is not recorded: %s", m.id.c_str(), opened.error.c_str());
+            }
+            return false;
+        }
+        one& r = recordings_[m.key];
+        r.recorder.emplace(std::move(opened.value));
+        r.path = path;
+        game.on_tick = [&r, id = m.id](const match::tick_record& t, uint64_t hash) {
+            if (r.failed) return;
+            if (auto s = r.recorder->record_tick(t, hash); !s) {
+                host::log_line("recording of match %s failed, it goes on unrecorded: %s", id.c_str(), s.error.c_str());
+                r.failed = true;
+            }
+        };
+        return true;
+    }
+
+    void finish(uint64_t key, match::match& game) {
+        auto it = recordings_.find(key);
+        if (it == recordings_.end()) return;
+        one& r = it->second;
+        game.on_tick = nullptr;
+        if (!r.failed) {
+            // The state hash (the world's, then the rules'), as every recorded tick's.
+            const world::world& w = game.state();
+            if (auto s = r.recorder->finish(w.tick(), rules::state_hash(w, game.game_rules())); !s)
+                host::log_line("recording failed at the end: %s", s.error.c_str());
+            else
+                host::log_line("recorded %u ticks to %s", w.tick(), r.path.c_str());
+        }
+        recordings_.erase(it);
+    }
+
+    const cli::server_setup* setup_ = nullptr;
+    bool folder_ = false;
+    std::map<uint64_t, one> recordings_;  // by match key
 };
 
 }  // namespace
 
 int run_server(const cli::server_setup& setup) {
     host::process_host host(setup.host, setup.ops);
-    match_recording recording;  // outlives the host's run: its callbacks point here
+    match_recordings recording;  // outlives the host's run: its callbacks point here
     if (!setup.record.empty() && !recording.open(host, setup)) return 2;
     // Started in this order: "listening on", then "udp listening on", then "http listening on".
     host.add(std::make_unique<net::tcp_transport>(host, setup.tcp));

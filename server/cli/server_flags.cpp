@@ -75,6 +75,10 @@ bool choose_modes(const std::string& modes_file, const std::string& mode_name, b
 
 }  // namespace
 
+bool record_is_folder(const std::string& record) {
+    return !record.empty() && (record.back() == '/' || std::filesystem::is_directory(record));
+}
+
 int parse_server_flags(int argc, char** argv, server_setup& out) {
     CLI::App app{"arena-server: the authoritative Arena game server", "arena-server"};
     host::host_options& options = out.host;
@@ -140,7 +144,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
                    "a match created on demand ends after this long without a client (default 30)")
         ->check(cli::finite_non_negative);
     app.add_option("--seed", options.match.seed, "world seed (default 1)");
-    app.add_option("--record", out.record, "record the session to FILE for arena-replay");
+    app.add_option("--record", out.record,
+                   "record the session to FILE for arena-replay; a folder (existing, or ending in '/') records "
+                   "every match, each to FOLDER/ID.arpl");
     app.add_option("--duration", options.duration_s,
                    "run this many seconds, then shut down cleanly (default: until a signal)")
         ->check(cli::finite_non_negative);
@@ -211,7 +217,9 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         return 2;
     }
     ops_options.bind = options.bind;
-    ops_options.recording = out.record;
+    // /recording serves the default match's.
+    ops_options.recording =
+        record_is_folder(out.record) ? (std::filesystem::path(out.record) / "default.arpl").string() : out.record;
     options.close_grace_ns = static_cast<int64_t>(drain_grace_s * 1e9);
     if (!token_secret_path.empty()) {
         auto secret = auth::token_secret::load(token_secret_path);
@@ -245,7 +253,7 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
     if (http_port >= 0) {
         web.port = static_cast<uint16_t>(http_port);
         web.web_root = web_root.empty() ? net::default_web_root("/proc/self/exe") : std::filesystem::path(web_root);
-        web.recording = out.record;
+        web.recording = ops_options.recording;
         web.serve_recording = ops_options.serve_recording;
         web.serve_metrics = !ops_options.metrics_port;  // else /metrics only at --metrics-bind
         out.web = std::move(web);

@@ -22,9 +22,13 @@ struct server_setup {
     std::optional<net::udp_options> udp;  // --udp-port
     std::optional<net::web_options> web;  // --http-port
     world::world_config world;
-    std::string record;           // --record: the file, or empty
+    std::string record;           // --record: the file or folder, or empty
     uint32_t hash_interval = 60;  // --hash-interval, ticks
 };
+
+// Whether --record names a folder (one recording per match): an existing directory, or a
+// path ending in '/'.
+bool record_is_folder(const std::string& record);
 
 // -1: run with `out`; otherwise the exit code (0 after --help, 2 for a refused flag).
 int parse_server_flags(int argc, char** argv, server_setup& out);

@@ -47,7 +47,8 @@ result<mode> parse_mode(const json& entry) {
             return out::failure("unknown field '" + key + "'");
         }
     }
-    if (!valid_mode_name(m.name)) return out::failure("name: 1 to 32 of a-z, 0-9, '_' and '-' (got '" + m.name.substr(0, 40) + "')");
+    if (!valid_mode_name(m.name))
+        return out::failure("name: 1 to 32 of a-z, 0-9, '_' and '-' (got '" + m.name.substr(0, 40) + "')");
     if (!m.preset.empty() && !world::preset_by_name(m.preset))
         return out::failure("preset: unknown preset '" + m.preset + "'");
     if (!entry.contains("world") && m.preset.empty()) return out::failure("needs a preset or a world");

@@ -21,9 +21,9 @@ inline constexpr size_t max_modes_file_bytes = 4 << 20;
 struct mode {
     std::string name;
     world::world_config world;
-    std::string preset;         // the preset it starts from (Welcome.preset); "" for a config of its own
-    uint32_t max_players = 0;   // a match's capacity; 0: the server's --max-players
-    double duration_s = 0;      // a match of this mode ends this long after it starts; 0: no limit
+    std::string preset;        // the preset it starts from (Welcome.preset); "" for a config of its own
+    uint32_t max_players = 0;  // a match's capacity; 0: the server's --max-players
+    double duration_s = 0;     // a match of this mode ends this long after it starts; 0: no limit
 };
 
 // Whether `name` may name a mode: 1 to max_mode_name_bytes of [a-z0-9_-].

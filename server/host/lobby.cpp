@@ -48,16 +48,19 @@ lobby_answer create(match_registry& matches, const lobby_request& request, const
         const std::string_view auth = request.authorization;
         if (auth.substr(0, bearer.size()) != bearer)
             return error(401, "creating a match needs a join token: Authorization: Bearer TOKEN");
-        if (auto name = check_token(auth.substr(bearer.size())); !name) return error(401, "token refused: " + name.error);
+        if (auto name = check_token(auth.substr(bearer.size())); !name)
+            return error(401, "token refused: " + name.error);
     }
     if (request.body.size() > max_lobby_body_bytes)
         return error(413, "the body is larger than " + std::to_string(max_lobby_body_bytes) + " bytes");
     const json body = json::parse(request.body, nullptr, false);
-    if (body.is_discarded() || !body.is_object()) return error(400, "the body must be a JSON object: {\"mode\": \"...\"}");
+    if (body.is_discarded() || !body.is_object())
+        return error(400, "the body must be a JSON object: {\"mode\": \"...\"}");
     for (const auto& [key, value] : body.items())
         if (key != "mode" && key != "private") return error(400, "unknown field '" + key.substr(0, 64) + "'");
     if (!body.contains("mode") || !body["mode"].is_string()) return error(400, "\"mode\" must be a string");
-    if (body.contains("private") && !body["private"].is_boolean()) return error(400, "\"private\" must be true or false");
+    if (body.contains("private") && !body["private"].is_boolean())
+        return error(400, "\"private\" must be true or false");
     const bool is_private = body.value("private", false);
     auto made = matches.create(body["mode"].get<std::string>(), !is_private, request.address);
     if (auto* no = std::get_if<match::rejection>(&made)) {
@@ -73,7 +76,8 @@ bool is_lobby_path(std::string_view path) {
     return path == prefix || (path.size() > prefix.size() + 1 && path.substr(0, prefix.size() + 1) == "/matches/");
 }
 
-lobby_answer answer_lobby(match_registry& matches, const lobby_request& request, const match::token_check& check_token) {
+lobby_answer answer_lobby(match_registry& matches, const lobby_request& request,
+                          const match::token_check& check_token) {
     const bool read = request.method == "GET" || request.method == "HEAD";
     if (request.path == prefix) {
         if (request.method == "POST") return create(matches, request, check_token);

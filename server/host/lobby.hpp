@@ -19,9 +19,9 @@ namespace arena::host {
 inline constexpr size_t max_lobby_body_bytes = 4096;
 
 struct lobby_request {
-    std::string method;  // "GET", "HEAD", "POST"
-    std::string path;    // "/matches" or "/matches/{id}", without the query
-    std::string body;    // POST's
+    std::string method;         // "GET", "HEAD", "POST"
+    std::string path;           // "/matches" or "/matches/{id}", without the query
+    std::string body;           // POST's
     std::string address;        // the client's, without its port: creations are bounded by it
     std::string authorization;  // the Authorization header ("Bearer TOKEN"), "" when absent
 };
@@ -36,7 +36,6 @@ struct lobby_answer {
 bool is_lobby_path(std::string_view path);
 
 // `check_token` is the server's (unset: an open server, where anyone may create).
-lobby_answer answer_lobby(match_registry& matches, const lobby_request& request,
-                          const match::token_check& check_token);
+lobby_answer answer_lobby(match_registry& matches, const lobby_request& request, const match::token_check& check_token);
 
 }  // namespace arena::host

@@ -100,12 +100,12 @@ std::variant<hosted_match*, match::rejection> match_registry::create(std::string
                                         " matches that still run, as many as one address may"};
     }
     if (matches_.size() >= options_.max_matches && !reclaim_empty())
-        return match::rejection{RejectCode::no_room_for_match,
-                                "the server holds as many matches as it may (" +
-                                    std::to_string(options_.max_matches) + ")"};
+        return match::rejection{RejectCode::no_room_for_match, "the server holds as many matches as it may (" +
+                                                                   std::to_string(options_.max_matches) + ")"};
     try {
         hosted_match& m = start(*mode, true, listed);
         m.creator = std::string(creator);
+        if (started_) started_(m);
         if (log_) log_("match created id=" + m.id + " mode=" + m.mode + (listed ? "" : " private"));
         return &m;
     } catch (const std::exception& e) {
@@ -205,6 +205,7 @@ void match_registry::end(std::map<uint64_t, hosted_match>::iterator it, const st
     } catch (const std::exception& e) {
         if (log_) log_("match id=" + m.id + " failed to say Bye: " + e.what());
     }
+    if (ending_) ending_(m, why);
     if (ended_.size() >= max_summaries) ended_.erase(ended_.begin());
     try {
         ended_.push_back(summary_of(m, why));
@@ -212,6 +213,14 @@ void match_registry::end(std::map<uint64_t, hosted_match>::iterator it, const st
         ended_.push_back({m.id, m.mode, why, {}, {}, 0});  // its rules cannot say their scoreboard
     }
     matches_.erase(it);
+}
+
+void match_registry::observe(std::function<void(hosted_match&)> started,
+                             std::function<void(hosted_match&, const std::string&)> ending) {
+    started_ = std::move(started);
+    ending_ = std::move(ending);
+    if (started_)
+        for (auto& [key, m] : matches_) started_(m);
 }
 
 std::string match_registry::default_match_over() const {
@@ -227,7 +236,11 @@ void match_registry::shut_down(std::string_view reason) {
 
 match_summary match_registry::summary_of(const hosted_match& m, std::string ended) const {
     const bool scored = m.game->game_rules().has_state();
-    return {m.id, m.mode, std::move(ended), m.game->counters(), m.game->scoreboard(),
+    return {m.id,
+            m.mode,
+            std::move(ended),
+            m.game->counters(),
+            m.game->scoreboard(),
             scored ? m.game->game_rules().winner() : 0};
 }
 

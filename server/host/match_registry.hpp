@@ -100,6 +100,11 @@ public:
     // is rethrown: the process cannot go on without it).
     void tick_all(const std::function<int64_t()>& now_ns,
                   const std::function<void(const hosted_match&, int64_t spent_ns)>& ticked = {});
+    // Told of every match as it starts (those running now at once) and as it ends, before it
+    // is forgotten (its last tick done, its Bye sent): a recording per match.
+    void observe(std::function<void(hosted_match&)> started,
+                 std::function<void(hosted_match&, const std::string& why)> ending);
+
     // Why the default match is over ("" while it plays): its rules ended it, or its mode's
     // duration is up. The process then shuts down.
     std::string default_match_over() const;
@@ -137,7 +142,8 @@ private:
     uint64_t next_key_ = 0;
     uint64_t created_ = 0;
     std::vector<match_summary> ended_;
-    uint64_t id_state_;  // the id generator's (seeded from the system's entropy)
+    std::function<void(hosted_match&)> started_;
+    std::function<void(hosted_match&, const std::string&)> ending_;
 };
 
 }  // namespace arena::host

@@ -43,7 +43,8 @@ TEST_CASE("a bad modes file is refused with the mode and the field", "[config][m
     CHECK(error_of("[]") == "needs an object with a \"modes\" array");
     CHECK(error_of("{") == "not valid JSON");
     CHECK(error_of(R"({"modes": [{"name": "Duel!", "preset": "asteroids"}]})").find("modes[0]: name:") == 0);
-    CHECK(error_of(R"({"modes": [{"name": "a", "preset": "nowhere"}]})") == "modes[0]: preset: unknown preset 'nowhere'");
+    CHECK(error_of(R"({"modes": [{"name": "a", "preset": "nowhere"}]})") ==
+          "modes[0]: preset: unknown preset 'nowhere'");
     CHECK(error_of(R"({"modes": [{"name": "a"}]})") == "modes[0]: needs a preset or a world");
     CHECK(error_of(R"({"modes": [{"name": "a", "preset": "asteroids", "teams": 2}]})") ==
           "modes[0]: unknown field 'teams'");

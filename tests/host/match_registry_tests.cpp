@@ -69,12 +69,12 @@ struct process {
     // Connects `c` as a transport does and sends its Hello; then one tick of every match so
     // that a player's Welcome goes out.
     void join(fake_client& c, const std::string& name, const std::string& match_id, const std::string& mode,
-              bool spectator = false) {
+              bool spectator = false, bool then_tick = true) {
         matches.match_of(c).connect(c);
         const protocol::frame_bytes hello =
             protocol::encode_hello({protocol::protocol_version, name, "", true, spectator, match_id, mode});
         in.take(c, hello, std::nullopt);
-        tick();
+        if (then_tick) tick();
     }
     void tick() {
         matches.tick_all([] { return int64_t{0}; });
@@ -189,7 +189,8 @@ TEST_CASE("a bad Hello is refused for what it is, whatever it asks to join", "[r
 
     fake_client long_mode;
     p.matches.match_of(long_mode).connect(long_mode);
-    p.in.take(long_mode, protocol::encode_hello({protocol::protocol_version, "x", "", true, false, "", std::string(65, 'm')}),
+    p.in.take(long_mode,
+              protocol::encode_hello({protocol::protocol_version, "x", "", true, false, "", std::string(65, 'm')}),
               std::nullopt);
     CHECK(long_mode.rejected == protocol::RejectCode::bad_request);
 }
@@ -252,5 +253,104 @@ TEST_CASE("the default match's exception is the process's", "[registry]") {
     fake_client c;
     p.join(c, "ada", "", "");
     c.throw_on_snapshot = true;
-    CHECK_THROWS_AS([&] { for (int i = 0; i < 3; ++i) p.tick(); }(), std::runtime_error);
+    CHECK_THROWS_AS(
+        [&] {
+            for (int i = 0; i < 3; ++i) p.tick();
+        }(),
+        std::runtime_error);
+}
+
+namespace {
+
+// A client from an address of its own.
+struct addressed_client : fake_client {
+    std::string from;
+    explicit addressed_client(std::string address) : from(std::move(address) + ":1") {}
+    std::string_view peer() const override { return from; }
+};
+
+}  // namespace
+
+TEST_CASE("one address cannot take every match slot: it holds four, others still create", "[registry][abuse]") {
+    process p(options(8));
+    // The attacker creates private matches through the lobby and by Hellos that leave at once.
+    int made = 0;
+    for (int i = 0; i < 6; ++i)
+        if (std::holds_alternative<host::hosted_match*>(p.matches.create("duel", false, "10.0.0.66"))) ++made;
+    CHECK(made == 4);
+    auto refused = p.matches.create("duel", false, "10.0.0.66");
+    REQUIRE(std::holds_alternative<match::rejection>(refused));
+    CHECK(std::get<match::rejection>(refused).code == protocol::RejectCode::no_room_for_match);
+    CHECK(std::get<match::rejection>(refused).detail.find("this address created 4") != std::string::npos);
+    // An honest player elsewhere still gets a match of the mode.
+    addressed_client honest("192.0.2.7");
+    p.join(honest, "honest", "", "duel");
+    REQUIRE(honest.welcome());
+    CHECK(honest.welcome()->mode == "duel");
+}
+
+TEST_CASE("at the match limit, creating and leaving cannot starve joins: an empty match gives its slot up",
+          "[registry][abuse]") {
+    host::registry_options o = options(4);
+    o.reclaim_empty_ticks = 10;
+    o.empty_match_ticks = 1000;  // the attackers' matches would otherwise hold their slots this long
+    process p(std::move(o));
+    // Three addresses each create a private match and never come: with the default, the limit.
+    for (const char* attacker : {"10.0.0.1", "10.0.0.2", "10.0.0.3"})
+        REQUIRE(std::holds_alternative<host::hosted_match*>(p.matches.create("duel", false, attacker)));
+    REQUIRE(p.matches.size() == 4);
+    addressed_client early("192.0.2.7");
+    p.join(early, "early", "", "duel");  // they have been empty 1 tick: nothing to reclaim yet
+    CHECK(early.rejected == protocol::RejectCode::no_room_for_match);
+    for (int i = 0; i < 10; ++i) p.tick();
+    addressed_client honest("192.0.2.8");
+    p.join(honest, "honest", "", "duel");
+    REQUIRE(honest.welcome());
+    CHECK(p.matches.size() == 4);  // one of the empty matches went, the honest one took its slot
+    const auto summaries = p.matches.summaries();
+    CHECK(summaries.back().ended == "match ended (empty, its slot given to a new match)");
+}
+
+namespace {
+
+// The default match's state hash at every tick of a 300-tick run in which two players fly and
+// shoot, beside `neighbours` other matches whose players do the same with other inputs.
+std::vector<uint64_t> default_match_hashes(int neighbours) {
+    process p(options(256));
+    std::vector<std::unique_ptr<fake_client>> clients;
+    auto add = [&](const std::string& name, const std::string& mode) {
+        // Each from an address of its own: one address may create only a few matches.
+        clients.push_back(std::make_unique<addressed_client>("10.0." + std::to_string(clients.size()) + ".1"));
+        p.join(*clients.back(), name, "", mode, false, false);  // all join in the same tick
+    };
+    add("a", "");
+    add("b", "");
+    for (int i = 0; i < neighbours; ++i) {
+        add("n" + std::to_string(i), "duel");
+        add("m" + std::to_string(i), "duel");
+    }
+    p.tick();
+    for (const auto& c : clients) REQUIRE(c->welcome());
+    std::vector<uint64_t> hashes;
+    for (uint32_t t = 1; t <= 300; ++t) {
+        for (size_t c = 0; c < clients.size(); ++c) {
+            protocol::input_msg in;
+            in.sequence = t;
+            in.thrust = c % 2 ? 1.0f : 0.5f;
+            in.turn = (t / 30 + c) % 3 == 0 ? 1.0f : -0.25f;
+            in.buttons = t % 20 == c % 20 ? 2 : 0;  // fire now and then
+            p.in.take(*clients[c], protocol::encode_input(in), std::nullopt);
+        }
+        p.tick();
+        hashes.push_back(rules::state_hash(p.matches.default_match().state(), p.matches.default_match().game_rules()));
+    }
+    return hashes;
+}
+
+}  // namespace
+
+TEST_CASE("a match's hashes do not depend on its neighbours", "[registry][determinism]") {
+    const std::vector<uint64_t> alone = default_match_hashes(0);
+    CHECK(default_match_hashes(100) == alone);
+    CHECK(alone.front() != alone.back());  // it did move
 }

@@ -18,7 +18,8 @@ using nlohmann::json;
 namespace {
 
 std::string post(uint16_t port, const std::string& path, const std::string& body) {
-    return raw_http(port, "POST " + path + " HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
+    return raw_http(port, "POST " + path +
+                              " HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
                               std::to_string(body.size()) + "\r\n\r\n" + body);
 }
 

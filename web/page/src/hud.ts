@@ -1,5 +1,5 @@
-// The HUD: the player's score and lives (or, for a spectator, that it is spectating), the
-// scoreboard, and the connection's figures (ping, snapshots a second, the prediction error). Written into the page's elements at most a few
+// The HUD: the match and its mode with an invite link, the player's score and lives (or, for
+// a spectator, that it is spectating), the scoreboard, and the connection's figures (ping, snapshots a second, the prediction error). Written into the page's elements at most a few
 // times a second; the numbers are also data-* attributes so that tests read them exactly.
 
 export interface Line {
@@ -38,6 +38,18 @@ export class Hud {
     own.textContent = 'spectating';
     own.dataset.spectating = 'true';
     el('help').textContent = 'spectating: the whole match, no ship of your own';
+  }
+
+  /** Which match this is (Welcome.match, Welcome.mode), the link that brings a friend into it
+   *  and the way back to the lobby. */
+  match(id: string, mode: string, invite: string, lobby: string): void {
+    el('match-id').textContent = id;
+    el('match-mode').textContent = mode || '–';
+    const link = el('invite') as HTMLAnchorElement;
+    link.href = invite;
+    link.title = `${invite}: send it to a friend, it joins this match`;
+    (el('to-lobby') as HTMLAnchorElement).href = lobby;
+    el('match-line').hidden = false;
   }
 
   setStatus(text: string): void {

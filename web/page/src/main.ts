@@ -3,11 +3,16 @@
 // what the SDK says to draw at each requestAnimationFrame: the own ship predicted with the
 // server's world in WebAssembly, everything else interpolated from the snapshots. With
 // ?spectate it watches instead: no ship, no controls, the whole world on the canvas.
+// ?match=ID joins that match, ?mode=NAME joins or creates one of that mode, neither the
+// server's default match; ?lobby shows the lobby (src/lobby.ts) instead of the game.
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 import { connect } from './arena-sdk.mjs';
+import type { ConnectOptions } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
 import { Body, Flash, KIND_BULLET, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
 import { Hud, Line } from './hud.js';
+import { PageQuery, inviteLink, lobbyLink, readQuery } from './links.js';
+import { LobbyState, newLobbyState, showLobby } from './lobby.js';
 
 const FLASH_MS = 600;
 const SAMPLES = 4096;
@@ -45,6 +50,13 @@ interface PageState {
   predictedShotsDrawn: number;
   bye: unknown;
   error: string;
+  /** The match joined and its mode (the Welcome's), and the link that invites another player
+   *  into it; '' until the Welcome. */
+  match: string;
+  mode: string;
+  invite: string;
+  /** ?lobby: the lobby's matches and its last error; null on the game's page. */
+  lobby: LobbyState | null;
 }
 
 declare global {
@@ -53,26 +65,52 @@ declare global {
   }
 }
 
+function newPageState(spectating: boolean): PageState {
+  return {
+    client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
+    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
+    bye: null, error: '', match: '', mode: '', invite: '', lobby: null,
+  };
+}
+
+/** Where the query asks to go: a match by id, join-or-create by mode, else the default match. */
+function destination(query: PageQuery): ConnectOptions {
+  const options: ConnectOptions = { spectate: query.spectate };
+  if (query.match) options.match = query.match;
+  if (query.mode) options.mode = query.mode;
+  return options;
+}
+
+function joiningText(query: PageQuery, name: string): string {
+  const where = query.match ? ` match ${query.match}` : query.mode ? ` a match of mode ${query.mode}` : '';
+  return query.spectate ? `joining${where} to watch as ${name}…` : `joining${where} as ${name}…`;
+}
+
 async function main(): Promise<void> {
+  const query = readQuery(location.search);
+  const page = newPageState(query.spectate && !query.lobby);
+  window.arenaPage = page;
+  if (query.lobby) {
+    page.lobby = newLobbyState();
+    showLobby(page.lobby, query);
+    return;
+  }
+  await play(page, query);
+}
+
+async function play(page: PageState, query: PageQuery): Promise<void> {
   const canvas = document.getElementById('game') as HTMLCanvasElement;
   const painter = new Painter(canvas);
   const hud = new Hud();
-  const params = new URLSearchParams(location.search);
-  const spectating = params.has('spectate');
+  const spectating = query.spectate;
   // A spectator has no controls: the keys do nothing (and scroll nothing away).
   const controls = spectating ? null : new Controls(window);
-  const name = (params.get('name') ?? '').trim() || (spectating ? 'spectator' : 'player');
-  const page: PageState = {
-    client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
-    snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
-    bye: null, error: '',
-  };
-  window.arenaPage = page;
+  const name = query.name || (spectating ? 'spectator' : 'player');
 
-  hud.setStatus(spectating ? `joining to watch as ${name}…` : `joining as ${name}…`);
+  hud.setStatus(joiningText(query, name));
   if (spectating) hud.spectating();
   const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  const client = await connect(`${scheme}//${location.host}/ws`, name, params.get('token') ?? '', { spectate: spectating });
+  const client = await connect(`${scheme}//${location.host}/ws`, name, query.token, destination(query));
   page.client = client;
 
   let world: World = { wraps: false, width: 0, height: 0 };
@@ -86,9 +124,13 @@ async function main(): Promise<void> {
   const lastSeen = new Map<number, { x: number; y: number; r: number }>();
 
   const lines = (): Line[] => [...client.players.values()];
-  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[] }) => {
+  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[]; match: string; mode: string }) => {
     page.playerId = w.playerId;
     page.entityId = w.entityId;
+    page.match = w.match;
+    page.mode = w.mode;
+    page.invite = inviteLink(w.match, location.href);
+    hud.match(w.match, w.mode, page.invite, lobbyLink(query.name, query.token));
     world = w.world;
     statics = w.statics;
     hud.setStatus('');
