@@ -140,6 +140,10 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
                    "matches at once in this process, the default one included (default: 50 per core, "
                    "each match's memory being small; 1 hosts the default match alone)")
         ->check(CLI::Range(1u, 100'000u));
+    app.add_option("--threads", options.threads,
+                   "threads that tick the matches, each match on one at a time (default: the machine's cores); "
+                   "the transports and the HTTP port stay on one")
+        ->check(CLI::Range(1u, 256u));
     app.add_option("--empty-match-seconds", options.empty_match_seconds,
                    "a match created on demand ends after this long without a client (default 30)")
         ->check(cli::finite_non_negative);
@@ -241,6 +245,7 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
         return 2;
     }
     if (!choose_world(preset, config_file, rules_name, out)) return 2;
+    if (app.count("--threads") == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
     if (app.count("--max-matches") == 0) options.max_matches = 50 * std::max(1u, std::thread::hardware_concurrency());
     if (!choose_modes(modes_file, mode_name, app.count("--config") + app.count("--rules") > 0, out)) return 2;
 

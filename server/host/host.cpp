@@ -55,6 +55,7 @@ registry_options registry_options_of(const host_options& o) {
     r.modes = o.modes;
     r.default_mode = o.default_mode;
     r.max_matches = std::max<uint32_t>(1, o.max_matches);
+    r.threads = std::max(1u, o.threads);
     r.empty_match_ticks = static_cast<uint32_t>(std::max(1.0, o.empty_match_seconds * o.match.tick_rate));
     r.wall_clock_ms = [] {
         return std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -21,6 +21,7 @@ struct host_options {
     std::string default_mode = "asteroids";
     uint32_t max_matches = 1;                  // matches at once, the default one included
     double empty_match_seconds = 30;           // a match created on demand ends after this long empty
+    unsigned threads = 1;                      // threads that tick the matches, the io thread included
     double duration_s = 0;                     // 0: run until a signal
     std::string stats_json;                    // written at exit when set
     int64_t stall_timeout_ns = 5'000'000'000;  // output stuck this long drops the client

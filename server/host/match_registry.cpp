@@ -1,5 +1,6 @@
 #include "server/host/match_registry.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <random>
@@ -18,14 +19,15 @@ registry_options one_match(const match::match_config& config, const world::world
 
 match_registry::match_registry(registry_options options, match::logger::sink log, match::token_check check_token)
     : options_(std::move(options)), log_(std::move(log)), check_token_(std::move(check_token)) {
+    if (options_.threads > 1) pool_ = std::make_unique<tick_pool>(options_.threads);
     const config::mode* mode = config::find_mode(options_.modes, options_.default_mode);
     if (!mode) throw std::invalid_argument("the default mode '" + options_.default_mode + "' is not a mode");
     default_ = &start(*mode, false, true);
 }
 
-hosted_match& match_registry::start(const config::mode& mode, bool on_demand, bool listed) {
+hosted_match& match_registry::start(const config::mode& mode, bool on_demand, bool listed, std::string id) {
     const uint64_t key = next_key_++;
-    const std::string id = key == 0 ? std::string(default_match_id) : new_id();
+    if (id.empty()) id = key == 0 ? std::string(default_match_id) : new_id();
     match::match_config config = options_.base;
     config.preset = mode.preset;
     config.match_id = id;
@@ -85,25 +87,42 @@ bool match_registry::reclaim_empty() {
     return true;
 }
 
+namespace {
+
+bool valid_match_id(std::string_view id) {
+    if (id.empty() || id.size() > 64) return false;
+    for (const char c : id)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') return false;
+    return true;
+}
+
+}  // namespace
+
 std::variant<hosted_match*, match::rejection> match_registry::create(std::string_view mode_name, bool listed,
-                                                                     std::string_view creator) {
+                                                                     std::string_view creator, std::string_view id) {
+    if (!id.empty() && (!valid_match_id(id) || find(id)))
+        return match::rejection{RejectCode::bad_request, find(id)
+                                                             ? "a match named '" + std::string(id) + "' already runs"
+                                                             : "a match id is 1 to 64 of A-Z, a-z, 0-9, '_' and '-'"};
     const config::mode* mode = config::find_mode(options_.modes, mode_name);
     if (!mode)
         return match::rejection{RejectCode::mode_unknown, "no mode '" + std::string(mode_name.substr(0, 64)) +
                                                               "' (modes: " + config::mode_names(options_.modes) + ")"};
     if (!creator.empty()) {
-        size_t theirs = 0;
-        for (const auto& [key, m] : matches_) theirs += m.creator == creator ? 1 : 0;
-        if (theirs >= options_.max_matches_per_address)
+        // Matches in play are what a server is for, whoever created them (one address may be a
+        // whole office behind NAT, or a load test); empty ones only hold slots.
+        size_t empty = 0;
+        for (const auto& [key, m] : matches_) empty += m.creator == creator && m.game->connection_count() == 0 ? 1 : 0;
+        if (empty >= options_.max_matches_per_address)
             return match::rejection{RejectCode::no_room_for_match,
-                                    "this address created " + std::to_string(theirs) +
-                                        " matches that still run, as many as one address may"};
+                                    "this address created " + std::to_string(empty) +
+                                        " matches that are still empty, as many as one address may"};
     }
     if (matches_.size() >= options_.max_matches && !reclaim_empty())
         return match::rejection{RejectCode::no_room_for_match, "the server holds as many matches as it may (" +
                                                                    std::to_string(options_.max_matches) + ")"};
     try {
-        hosted_match& m = start(*mode, true, listed);
+        hosted_match& m = start(*mode, true, listed, std::string(id));
         m.creator = std::string(creator);
         if (started_) started_(m);
         if (log_) log_("match created id=" + m.id + " mode=" + m.mode + (listed ? "" : " private"));
@@ -173,25 +192,60 @@ match::match* match_registry::route_hello(match::connection& c, const protocol::
 
 void match_registry::tick_all(const std::function<int64_t()>& now_ns,
                               const std::function<void(const hosted_match&, int64_t)>& ticked) {
-    std::vector<std::pair<uint64_t, std::string>> ended;
-    for (auto& [key, m] : matches_) {
+    // Each match's tick is its own: it reads and writes nothing of another's, so the matches
+    // tick in any order or at once with the same results (docs/DETERMINISM.md).
+    struct outcome {
+        hosted_match* m = nullptr;
+        int64_t spent = 0;
+        std::exception_ptr failure{};
+        match::outbox out{};
+    };
+    std::vector<outcome> outcomes;
+    outcomes.reserve(matches_.size());
+    for (auto& [key, m] : matches_) outcomes.push_back({&m});
+    auto tick_one = [&](size_t i, bool deferred) {
+        outcome& o = outcomes[i];
+        match::match& game = *o.m->game;
+        if (deferred) game.defer_output(&o.out);
         const int64_t begin = now_ns();
         try {
-            m.game->tick();
-        } catch (const std::exception& e) {
-            if (!m.on_demand) throw;
-            ended.emplace_back(key, std::string("its tick failed: ") + e.what());
+            game.tick();
+        } catch (...) {
+            o.failure = std::current_exception();
+        }
+        o.spent = now_ns() - begin;
+        game.defer_output(nullptr);
+    };
+    if (pool_ && outcomes.size() > 1) {
+        pool_->run(outcomes.size(), [&](size_t i) { tick_one(i, true); });
+    } else {
+        for (size_t i = 0; i < outcomes.size(); ++i) tick_one(i, false);
+    }
+    // Back on the calling thread: what the matches said goes out, in the order of the matches.
+    std::vector<std::pair<uint64_t, std::string>> ended;
+    for (outcome& o : outcomes) {
+        hosted_match& m = *o.m;
+        o.out.deliver();
+        if (o.failure) {
+            if (!m.on_demand) std::rethrow_exception(o.failure);
+            try {
+                std::rethrow_exception(o.failure);
+            } catch (const std::exception& e) {
+                ended.emplace_back(m.key, std::string("its tick failed: ") + e.what());
+            } catch (...) {
+                ended.emplace_back(m.key, "its tick failed");
+            }
             continue;
         }
-        if (ticked) ticked(m, now_ns() - begin);
+        if (ticked) ticked(m, o.spent);
         if (!m.on_demand) continue;
         m.empty_ticks = m.game->connection_count() == 0 && m.game->players_in_grace() == 0 ? m.empty_ticks + 1 : 0;
         if (m.game->over()) {
-            ended.emplace_back(key, "match over (its rules ended it)");
+            ended.emplace_back(m.key, "match over (its rules ended it)");
         } else if (m.end_tick != 0 && m.game->state().tick() >= m.end_tick) {
-            ended.emplace_back(key, "match over (its mode's duration reached)");
+            ended.emplace_back(m.key, "match over (its mode's duration reached)");
         } else if (m.empty_ticks >= options_.empty_match_ticks) {
-            ended.emplace_back(key, "match ended (empty)");
+            ended.emplace_back(m.key, "match ended (empty)");
         }
     }
     for (const auto& [key, why] : ended) end(matches_.find(key), why);

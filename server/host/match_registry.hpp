@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "server/config/modes.hpp"
+#include "server/host/tick_pool.hpp"
 #include "server/match/match.hpp"
 
 namespace arena::host {
@@ -56,11 +57,14 @@ struct registry_options {
     std::string default_mode;              // the default match's mode (one of modes)
     uint32_t max_matches = 1;              // matches at once, the default one included
     uint32_t empty_match_ticks = 30 * 60;  // a match created on demand ends after this many ticks empty
-    // Matches one address may have created that still run: one address cannot take the slots.
+    // Matches without a client one address may have created (by the lobby, or by a Hello that
+    // then left): one address cannot take the slots with empty matches.
     uint32_t max_matches_per_address = 4;
     // At max_matches, a match created on demand that has been empty this long gives its slot up
     // to a new one: creating and leaving matches cannot starve the joins that need one.
     uint32_t reclaim_empty_ticks = 5 * 60;
+    // Threads that tick the matches, the calling one included (--threads); 1: the caller alone.
+    unsigned threads = 1;
     // The wall clock, ms since the epoch, for a match's "created" (unset: 0, as in tests).
     std::function<int64_t()> wall_clock_ms;
 };
@@ -91,13 +95,17 @@ public:
     // the address holds as many as it may, or a config that does not start). At max_matches
     // it first ends the match created on demand that has been empty longest, if that is at
     // least reclaim_empty_ticks.
+    // `id`: the match's id when the caller names it (an Agones allocation's arena.dev/match:
+    // 1 to 64 of [A-Za-z0-9_-], not in use); "": a new random one.
     std::variant<hosted_match*, match::rejection> create(std::string_view mode, bool listed,
-                                                         std::string_view creator = {});
+                                                         std::string_view creator = {}, std::string_view id = {});
 
-    // One tick of every match, in the order they were created, each timed with `now_ns` and
-    // reported to `ticked`; then the matches created on demand that ended are said Bye to and
-    // forgotten. An exception from a match's tick ends that match alone (the default match's
-    // is rethrown: the process cannot go on without it).
+    // One tick of every match, each timed with `now_ns` and reported to `ticked`; then the
+    // matches created on demand that ended are said Bye to and forgotten. With threads > 1 the
+    // matches tick at once on the pool, each on one thread, their output kept (outbox.hpp) and
+    // delivered on the calling thread in the order the matches were created; `now_ns` must be
+    // safe to call from any thread. An exception from a match's tick ends that match alone (the
+    // default match's is rethrown: the process cannot go on without it).
     void tick_all(const std::function<int64_t()>& now_ns,
                   const std::function<void(const hosted_match&, int64_t spent_ns)>& ticked = {});
     // Told of every match as it starts (those running now at once) and as it ends, before it
@@ -125,7 +133,7 @@ public:
 
 private:
     // Creates the match without checking the limit; throws what a bad config throws.
-    hosted_match& start(const config::mode& mode, bool on_demand, bool listed);
+    hosted_match& start(const config::mode& mode, bool on_demand, bool listed, std::string id = {});
     // The fullest open, listed match of `mode` in which `hello` has a seat; nullptr: none.
     hosted_match* fullest_with_seat(std::string_view mode, const protocol::hello_msg& hello);
     void end(std::map<uint64_t, hosted_match>::iterator it, const std::string& why);
@@ -142,6 +150,7 @@ private:
     uint64_t next_key_ = 0;
     uint64_t created_ = 0;
     std::vector<match_summary> ended_;
+    std::unique_ptr<tick_pool> pool_;  // threads > 1
     std::function<void(hosted_match&)> started_;
     std::function<void(hosted_match&, const std::string&)> ending_;
 };

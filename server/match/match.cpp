@@ -122,7 +122,11 @@ void match::reject(connection& c, const rejection& why) {
     log_("reject %.*s code=%s reason=%s", static_cast<int>(peer.size()), peer.data(), code, why.detail.c_str());
     ++counters_.rejects[why.code];
     forget(it, close_cause::of(why));
-    c.close(why.code, why.detail);
+    if (outbox_) {
+        outbox_->close(c, why.code, why.detail);
+    } else {
+        c.close(why.code, why.detail);
+    }
 }
 
 void match::disconnect(connection& c, const close_cause& cause) {

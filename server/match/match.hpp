@@ -26,6 +26,7 @@
 #include "server/match/game_feed.hpp"
 #include "server/match/input_buffer.hpp"
 #include "server/match/logger.hpp"
+#include "server/match/outbox.hpp"
 #include "server/match/snapshot_fanout.hpp"
 #include "server/match/tick_record.hpp"
 #include "server/world/world.hpp"
@@ -124,6 +125,10 @@ public:
     // One world step: joins, leaves, one input per player, the step, then the snapshot if due;
     // then what time alone refuses (a Hello that never came).
     void tick();
+    // While set, what tick() says to connections (Welcomes, Rejects, snapshots) is kept in `out`
+    // in order instead of sent: a tick on a worker thread, whose output the host delivers on the
+    // io thread (outbox.hpp). Null: sent at once. Only tick() may run while it is set.
+    void defer_output(outbox* out) { outbox_ = out; }
 
     // Called after every step with what the tick changed and the world's hash (recording).
     std::function<void(const tick_record&, uint64_t)> on_tick;
@@ -253,6 +258,7 @@ private:
     uint32_t shared_game_sent_ = 0;     // the game's version the newest shared frame brought
     uint32_t shared_game_through_ = 0;  // this tick's shared frame's
     bool over_ = false;
+    outbox* outbox_ = nullptr;  // defer_output()'s
 };
 
 }  // namespace arena::match

@@ -221,7 +221,11 @@ void match::send_welcome(connection& c, snapshot_client& snapshots, const protoc
     const auto bodies = world_.bodies();
     // Ids grow: a static body added later has an id past this, and snapshots describe it.
     snapshots.shapes.welcomed(bodies.empty() ? 0 : bodies.back().id + 1);
-    c.send(protocol::encode_welcome(welcome));
+    if (outbox_) {
+        outbox_->send(c, protocol::encode_welcome(welcome));
+    } else {
+        c.send(protocol::encode_welcome(welcome));
+    }
 }
 
 }  // namespace arena::match

@@ -99,7 +99,11 @@ void match::send_snapshot(Reader& r, world::body_id own, uint32_t ack) {
         if (const protocol::snapshot_encoder* shared = fanout_.shared_frame(r.snapshots)) {
             counters_.snapshot_bytes = shared->frame().size();
             r.game_sent = shared_game_through_;
-            r.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
+            if (outbox_) {
+                outbox_->send_snapshot(*r.who, *shared, ack);
+            } else {
+                r.who->send_snapshot(*shared, ack);  // one memcpy, the ack patched in
+            }
             return;
         }
     }
@@ -110,7 +114,11 @@ void match::send_snapshot(Reader& r, world::body_id own, uint32_t ack) {
                                          : fanout_.full_frame(r.snapshots, own, ack, game);
     if (r.snapshots.delta) r.snapshots.views.record_game(world_.tick(), through);
     counters_.snapshot_bytes = frame.size();
-    r.who->send_snapshot_frame(frame);
+    if (outbox_) {
+        outbox_->send_snapshot_frame(*r.who, frame);
+    } else {
+        r.who->send_snapshot_frame(frame);
+    }
 }
 
 }  // namespace arena::match

@@ -25,8 +25,9 @@ struct fake_client : match::connection {
     void send_snapshot(const protocol::snapshot_encoder& s, uint32_t ack) override {
         send_snapshot_frame(s.frame_with_ack(ack));
     }
-    void send_snapshot_frame(std::span<const uint8_t>) override {
+    void send_snapshot_frame(std::span<const uint8_t> frame) override {
         if (throw_on_snapshot) throw std::runtime_error("a snapshot send failed");
+        frames.emplace_back(frame.begin(), frame.end());
     }
     void close(protocol::RejectCode code, std::string_view why) override {
         rejected = code;
@@ -281,7 +282,8 @@ TEST_CASE("one address cannot take every match slot: it holds four, others still
     auto refused = p.matches.create("duel", false, "10.0.0.66");
     REQUIRE(std::holds_alternative<match::rejection>(refused));
     CHECK(std::get<match::rejection>(refused).code == protocol::RejectCode::no_room_for_match);
-    CHECK(std::get<match::rejection>(refused).detail.find("this address created 4") != std::string::npos);
+    CHECK(std::get<match::rejection>(refused).detail.find("this address created 4 matches that are still empty") !=
+          std::string::npos);
     // An honest player elsewhere still gets a match of the mode.
     addressed_client honest("192.0.2.7");
     p.join(honest, "honest", "", "duel");
@@ -313,10 +315,13 @@ TEST_CASE("at the match limit, creating and leaving cannot starve joins: an empt
 
 namespace {
 
-// The default match's state hash at every tick of a 300-tick run in which two players fly and
-// shoot, beside `neighbours` other matches whose players do the same with other inputs.
-std::vector<uint64_t> default_match_hashes(int neighbours) {
-    process p(options(256));
+// Every match's state hash at every tick of a 300-tick run, the default match's first: two
+// players fly and shoot in the default match, beside `neighbours` duels whose players do the
+// same with other inputs, ticked by `threads` threads.
+std::vector<std::vector<uint64_t>> match_hashes(int neighbours, unsigned threads) {
+    host::registry_options o = options(256);
+    o.threads = threads;
+    process p(std::move(o));
     std::vector<std::unique_ptr<fake_client>> clients;
     auto add = [&](const std::string& name, const std::string& mode) {
         // Each from an address of its own: one address may create only a few matches.
@@ -326,12 +331,13 @@ std::vector<uint64_t> default_match_hashes(int neighbours) {
     add("a", "");
     add("b", "");
     for (int i = 0; i < neighbours; ++i) {
-        add("n" + std::to_string(i), "duel");
-        add("m" + std::to_string(i), "duel");
+        const std::string number = std::to_string(i);
+        add(std::string("n").append(number), "duel");
+        add(std::string("m").append(number), "duel");
     }
     p.tick();
     for (const auto& c : clients) REQUIRE(c->welcome());
-    std::vector<uint64_t> hashes;
+    std::vector<std::vector<uint64_t>> hashes(p.matches.size());
     for (uint32_t t = 1; t <= 300; ++t) {
         for (size_t c = 0; c < clients.size(); ++c) {
             protocol::input_msg in;
@@ -342,7 +348,9 @@ std::vector<uint64_t> default_match_hashes(int neighbours) {
             p.in.take(*clients[c], protocol::encode_input(in), std::nullopt);
         }
         p.tick();
-        hashes.push_back(rules::state_hash(p.matches.default_match().state(), p.matches.default_match().game_rules()));
+        size_t i = 0;
+        for (const auto& [key, m] : p.matches.matches())
+            hashes[i++].push_back(rules::state_hash(m.game->state(), m.game->game_rules()));
     }
     return hashes;
 }
@@ -350,7 +358,52 @@ std::vector<uint64_t> default_match_hashes(int neighbours) {
 }  // namespace
 
 TEST_CASE("a match's hashes do not depend on its neighbours", "[registry][determinism]") {
-    const std::vector<uint64_t> alone = default_match_hashes(0);
-    CHECK(default_match_hashes(100) == alone);
+    const std::vector<uint64_t> alone = match_hashes(0, 1).front();
+    CHECK(match_hashes(100, 1).front() == alone);
     CHECK(alone.front() != alone.back());  // it did move
+}
+
+TEST_CASE("every match's hashes are the same on 1 thread and on 4", "[registry][determinism][threads]") {
+    const auto one = match_hashes(20, 1);
+    const auto four = match_hashes(20, 4);
+    REQUIRE(one.size() == 21);
+    CHECK(four == one);
+    CHECK(one.front() == match_hashes(0, 4).front());  // and alone on 4
+}
+
+TEST_CASE("a match's output on a worker thread reaches its clients in the order it was said", "[registry][threads]") {
+    host::registry_options o = options(8);
+    o.threads = 3;
+    process p(std::move(o));
+    fake_client a, b, c;
+    p.join(a, "a", "", "duel");
+    p.join(b, "b", "", "duel");
+    p.join(c, "c", "", "sandbox");
+    for (int i = 0; i < 9; ++i) p.tick();
+    for (fake_client* client : {&a, &b, &c}) {
+        REQUIRE(client->welcome());
+        REQUIRE_FALSE(client->frames.empty());
+        // The Welcome first, then the snapshots, as when the match ticks on the io thread.
+        REQUIRE(client->frames.size() >= 3);
+        for (size_t i = 0; i < client->frames.size(); ++i) {
+            auto m = protocol::verify_message(client->frames[i], protocol::server_frame_limits);
+            REQUIRE(m);
+            CHECK(m.value->payload_type() == (i == 0 ? protocol::Payload::Welcome : protocol::Payload::Snapshot));
+        }
+    }
+}
+
+TEST_CASE("a match created under a name the caller gives keeps it; a name in use or malformed is refused",
+          "[registry]") {
+    process p;
+    auto made = p.matches.create("duel", true, "", "tournament-7");
+    REQUIRE(std::holds_alternative<host::hosted_match*>(made));
+    CHECK(std::get<host::hosted_match*>(made)->id == "tournament-7");
+    CHECK(std::holds_alternative<match::rejection>(p.matches.create("duel", true, "", "tournament-7")));
+    CHECK(std::holds_alternative<match::rejection>(p.matches.create("duel", true, "", "no spaces")));
+    CHECK(std::holds_alternative<match::rejection>(p.matches.create("duel", true, "", "default")));
+    fake_client c;
+    p.join(c, "ada", "tournament-7", "");
+    REQUIRE(c.welcome());
+    CHECK(c.welcome()->match == "tournament-7");
 }

@@ -40,16 +40,19 @@ export class Hud {
     el('help').textContent = 'spectating: the whole match, no ship of your own';
   }
 
-  /** Which match this is (Welcome.match, Welcome.mode), the link that brings a friend into it
-   *  and the way back to the lobby. */
-  match(id: string, mode: string, invite: string, lobby: string): void {
+  /** Which match this is (Welcome.match, Welcome.mode), and the link that brings a friend into it. */
+  match(id: string, mode: string, invite: string): void {
     el('match-id').textContent = id;
     el('match-mode').textContent = mode || '–';
     const link = el('invite') as HTMLAnchorElement;
     link.href = invite;
     link.title = `${invite}: send it to a friend, it joins this match`;
-    (el('to-lobby') as HTMLAnchorElement).href = lobby;
-    el('match-line').hidden = false;
+    el('invite-item').hidden = false;
+  }
+
+  /** The way back to the lobby, shown from the start: a refused join needs it most. */
+  lobby(href: string): void {
+    (el('to-lobby') as HTMLAnchorElement).href = href;
   }
 
   setStatus(text: string): void {

@@ -108,6 +108,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
   const name = query.name || (spectating ? 'spectator' : 'player');
 
   hud.setStatus(joiningText(query, name));
+  hud.lobby(lobbyLink(query.name, query.token));
   if (spectating) hud.spectating();
   const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
   const client = await connect(`${scheme}//${location.host}/ws`, name, query.token, destination(query));
@@ -130,7 +131,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     page.match = w.match;
     page.mode = w.mode;
     page.invite = inviteLink(w.match, location.href);
-    hud.match(w.match, w.mode, page.invite, lobbyLink(query.name, query.token));
+    hud.match(w.match, w.mode, page.invite);
     world = w.world;
     statics = w.statics;
     hud.setStatus('');
