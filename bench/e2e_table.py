@@ -88,8 +88,54 @@ def colyseus_table(work):
           f"the floor alone is {t['server_cpu_s_per_s']:.3f} ({t['server_cpu_s_per_s'] / (c_cpu / 10):.1f}x that).")
 
 
+def rooms_table(work):
+    a = arena_row(work, "arena-rooms")
+    s = load(f"{work}/arena-rooms.server.json")
+    b = load(f"{work}/arena-rooms.bots.json")
+    matches = [m for m in s.get("matches", []) if m["mode"] == "room8"]
+    gap = b["figures"].get("snapshot_gap_ms", {})
+    per_match_ms = a["tick"]["mean"] / max(1, len(matches))
+    print("| {} clients in matches of 8 | matches | server CPU s per s | peak RSS MB | bytes per client per s | snapshot gap p99 ms |".format(a["n"]))
+    print("|---|---:|---:|---:|---:|---:|")
+    print(f"| Arena (delta, whole match in view) | {len(matches)} | {a['cpu_per_s']:.3f} | {a['rss_mb']:.1f} | {a['out_per_client']:.0f} | {gap.get('p99', 0):.1f} |")
+    c = last_json_line(f"{work}/colyseus-rooms.json")
+    if c is not None:
+        c_cpu = c["server_cpu_pct_of_core"] / 100
+        print(f"| Colyseus 0.18, ROOM_SIZE=8 | {c.get('rooms', '')} | {c_cpu:.3f} | {c['server_peak_rss_mb']:.1f} | {c['recv_bytes_per_s_per_client']:.0f} | |")
+    t = last_json_line(f"{work}/tcp-floor-rooms.json")
+    if t is not None:
+        print(f"| TCP floor: the same messages, no game | | {t['server_cpu_s_per_s']:.3f} | | | |")
+    print()
+    if c is not None:
+        print(f"Arena's CPU is {a['cpu_per_s'] / c_cpu:.2f} of Colyseus's (goal: at most 0.33)", end="")
+        if t is not None:
+            print(f", {a['cpu_per_s'] / t['server_cpu_s_per_s']:.2f}x the floor's (goal: at most 1.3)", end="")
+        print(".")
+    print(f"Whole tick p50 / p99 / max {a['tick']['p50']:.3f} / {a['tick']['p99']:.3f} / {a['tick']['max']:.3f} ms for "
+          f"{len(matches)} matches: {per_match_ms:.3f} ms per 8-player match on average, so one core's 16.7 ms tick "
+          f"holds about {16.667 / per_match_ms:.0f} such matches before ticks run late (tick work only; the transports "
+          f"share the core).")
+
+
+def matches_table(work):
+    m = last_json_line(f"{work}/matches.json")
+    if m is None:
+        print("arena-bench-matches failed: no JSON line.")
+        return
+    t = m["tick_ms"]
+    print(f"The matches alone (`arena-bench-matches`: {m['matches']} matches of 8 players on one thread, the "
+          f"transports' work left out): memory {m['empty_match_mib'] * 1024:.0f} KiB per empty match and "
+          f"{m['full_match_mib'] * 1024:.0f} KiB per full one; the whole tick {t['p50']:.3f} / {t['p99']:.3f} / "
+          f"{t['max']:.3f} ms (p50 / p99 / max), {m['per_match_ms_p99'] * 1000:.1f} us per match at the p99: "
+          f"one core ticks about {m['matches_per_core_at_p99']:.0f} such matches at 60 Hz before its ticks run late.")
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "arena":
         arena_table(sys.argv[2], sys.argv[3:])
+    elif sys.argv[1] == "rooms":
+        rooms_table(sys.argv[2])
+    elif sys.argv[1] == "matches":
+        matches_table(sys.argv[2])
     else:
         colyseus_table(sys.argv[2])

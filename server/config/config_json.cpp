@@ -117,6 +117,12 @@ std::optional<world::game_rules> rules_by_name(std::string_view name) {
     return std::nullopt;
 }
 
+std::string rules_name(world::game_rules rules) {
+    for (const auto& [n, r] : rules_names)
+        if (r == rules) return n;
+    return "";
+}
+
 std::string rules_names_list() {
     std::string out;
     for (const auto& [n, rules] : rules_names) out += (out.empty() ? "" : ", ") + std::string(n);

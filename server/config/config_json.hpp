@@ -37,6 +37,8 @@ result<world::world_config> load_config_file(const std::string& path);
 
 // The game rules a config's "rules" names ("sandbox", "asteroids"), or none for another name.
 std::optional<world::game_rules> rules_by_name(std::string_view name);
+// The name of `rules` in a config ("sandbox", "asteroids").
+std::string rules_name(world::game_rules rules);
 // Those names, for a message: "sandbox, asteroids".
 std::string rules_names_list();
 

@@ -81,6 +81,7 @@ process_host::process_host(const host_options& options, const ops::ops_options& 
           io_, ops, [this] { return metrics_snapshot(); }, [this] { return ticking(); },
           [](const std::string& line) { log_line("%s", line.c_str()); }) {
     signals_.add(SIGUSR1);
+    ops_.keep_density([this](const ops::allocation_request& request) { create_allocated_match(request); });
 }
 
 process_host::~process_host() = default;
@@ -119,7 +120,34 @@ void process_host::start() {
             if (!ec) shutdown("match over (--duration reached)");
         });
     }
+    publish_density();
     ops_.start_after_listening();  // binds --metrics-port, then POST /ready to Agones
+}
+
+void process_host::publish_density() {
+    if (!ops_.keeps_density()) return;
+    ops::density_state now;
+    now.rooms = static_cast<int64_t>(matches_.size());
+    // One value per live player: "MATCH/PLAYER", the player's id in its match.
+    for (const auto& [key, hosted] : matches_.matches())
+        for (const uint32_t id : hosted.game->live_player_ids())
+            now.players.insert(hosted.id + "/" + std::to_string(id));
+    ops_.want_density(std::move(now));  // sent only when it changed
+}
+
+void process_host::create_allocated_match(const ops::allocation_request& request) {
+    const std::string mode = request.mode.empty() ? options_.default_mode : request.mode;
+    if (!request.match.empty() && matches_.find(request.match)) {
+        log_line("agones: the allocated match %s already runs", request.match.c_str());
+    } else if (stopping_) {
+        log_line("agones: allocation ignored: shutting down");
+    } else if (auto made = matches_.create(mode, true, "", request.match);
+               std::holds_alternative<match::rejection>(made)) {
+        log_line("agones: the allocated match (mode %s) was not created: %s", mode.c_str(),
+                 std::get<match::rejection>(made).detail.c_str());
+    }
+    // Before the sidecar is asked again: the allocator already counted this match in `rooms`.
+    publish_density();
 }
 
 void process_host::run() {
@@ -182,8 +210,10 @@ void process_host::run_due_ticks() {
             return;
         }
     }
-    if (due > 0)
+    if (due > 0) {
         for (auto& t : transports_) t->flush_after_tick();
+        publish_density();  // matches created or ended, players joined or left
+    }
     const int64_t now = now_ns();
     if (due > 0) last_tick_ns_ = now;
     if (now - last_watchdog_ns_ >= 250'000'000) {

@@ -82,6 +82,10 @@ private:
     uint64_t open_connections() const;
     bool drained() const;  // no connection a shutdown waits for is open
     void finish();
+    // High density on Agones: the matches and players now, to the sidecar's Counter and List.
+    void publish_density();
+    // An Agones allocation asked for a match (its annotations): created here, on the io thread.
+    void create_allocated_match(const ops::allocation_request& request);
 
     boost::asio::io_context io_{1};  // one thread: the match, the transports and ops share it
     host_options options_;

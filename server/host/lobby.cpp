@@ -3,6 +3,8 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "server/config/config_json.hpp"
+
 namespace arena::host {
 
 using nlohmann::json;
@@ -42,6 +44,19 @@ json describe(const hosted_match& m) {
             {"private", !m.listed}};
 }
 
+// The modes a client may ask for, with what a match of each holds.
+lobby_answer list_modes(const match_registry& matches) {
+    json list = json::array();
+    for (const config::mode& m : matches.options().modes) {
+        list.push_back({{"name", m.name},
+                        {"capacity", m.max_players != 0 ? m.max_players : matches.options().base.admission.max_players},
+                        {"preset", m.preset},
+                        {"rules", config::rules_name(m.world.rules)},
+                        {"duration", m.duration_s}});
+    }
+    return {200, list.dump() + "\n"};
+}
+
 lobby_answer create(match_registry& matches, const lobby_request& request, const match::token_check& check_token) {
     if (check_token) {
         constexpr std::string_view bearer = "Bearer ";
@@ -73,12 +88,14 @@ lobby_answer create(match_registry& matches, const lobby_request& request, const
 }  // namespace
 
 bool is_lobby_path(std::string_view path) {
-    return path == prefix || (path.size() > prefix.size() + 1 && path.substr(0, prefix.size() + 1) == "/matches/");
+    return path == prefix || path == "/modes" ||
+           (path.size() > prefix.size() + 1 && path.substr(0, prefix.size() + 1) == "/matches/");
 }
 
 lobby_answer answer_lobby(match_registry& matches, const lobby_request& request,
                           const match::token_check& check_token) {
     const bool read = request.method == "GET" || request.method == "HEAD";
+    if (request.path == "/modes") return read ? list_modes(matches) : error(405, "GET or HEAD");
     if (request.path == prefix) {
         if (request.method == "POST") return create(matches, request, check_token);
         if (!read) return error(405, "GET, HEAD or POST");

@@ -1,5 +1,6 @@
 #pragma once
-// The lobby on --http-port: GET /matches lists the open, listed matches; GET /matches/{id}
+// The lobby on --http-port: GET /modes lists the modes a client may ask for (name, capacity,
+// preset, rules, duration); GET /matches lists the open, listed matches; GET /matches/{id}
 // describes one (a private one too: its id is the invitation); POST /matches with
 // {"mode": "...", "private": bool} creates one. JSON in and out. No sockets and no clock: the
 // web transport hands each request in and writes the answer.
@@ -32,7 +33,7 @@ struct lobby_answer {
     std::string content_type = "application/json";
 };
 
-// Whether `path` is the lobby's ("/matches", "/matches/...").
+// Whether `path` is the lobby's ("/modes", "/matches", "/matches/...").
 bool is_lobby_path(std::string_view path);
 
 // `check_token` is the server's (unset: an open server, where anyone may create).

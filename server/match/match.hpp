@@ -156,6 +156,8 @@ public:
     size_t player_count() const { return players_.size(); }  // live and in the reconnect grace
     size_t live_player_count() const { return players_.size() - players_in_grace(); }
     size_t players_in_grace() const;  // dropped players whose bodies wait for them
+    // The ids of the players with a live connection, in increasing order.
+    std::vector<uint32_t> live_player_ids() const;
     size_t connection_count() const { return clients_.size(); }
     size_t spectator_count() const { return spectators_.size(); }
     // The player `c` plays, or the id its spectator was welcomed with (0: none yet, or not a

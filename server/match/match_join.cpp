@@ -167,6 +167,13 @@ void match::give_up_oldest_in_grace() {
     if (oldest != players_.end()) remove_player(oldest, "reconnect grace given up: a new player needed the slot");
 }
 
+std::vector<uint32_t> match::live_player_ids() const {
+    std::vector<uint32_t> ids;
+    for (const auto& [id, p] : players_)
+        if (p.who) ids.push_back(id.value());
+    return ids;
+}
+
 size_t match::players_in_grace() const {
     return static_cast<size_t>(
         std::count_if(players_.begin(), players_.end(), [](const auto& p) { return p.second.who == nullptr; }));

@@ -88,8 +88,14 @@ void udp_transport::start() {
     if (enet_address_set_host_ip(&address, bind.c_str()) != 0)
         throw std::runtime_error("--udp-port: ENet binds IPv4 only; cannot bind '" + bind + "'");
     address.port = options_.port;
-    const uint32_t limit =
-        options_.max_peers != 0 ? options_.max_peers : owner_.matches().default_match().rules().connection_limit();
+    // A peer slot per connection the matches may hold: --max-connections when given (a bound
+    // for the whole transport), else a match's default limit for every match the process may
+    // host; ENet's protocol numbers at most 4095 peers.
+    const host::host_options& host_options = owner_.options();
+    const uint64_t per_match = owner_.matches().default_match().rules().connection_limit();
+    const uint64_t limit = options_.max_peers != 0                             ? options_.max_peers
+                           : host_options.match.admission.max_connections != 0 ? per_match
+                                                                               : per_match * host_options.max_matches;
     const size_t peers = std::clamp<size_t>(limit, 1, ENET_PROTOCOL_MAXIMUM_PEER_ID);
     host_ = enet_host_create(&address, peers, udp_channel_count, 0, 0);
     if (host_ == nullptr)

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "server/ops/backoff.hpp"
+#include "server/ops/density_sync.hpp"
 #include "server/ops/http_client.hpp"
 
 namespace arena::ops {
@@ -16,10 +17,28 @@ agones_client::agones_client(boost::asio::io_context& io, agones_options options
       wake_(io),
       deadline_(io) {}
 
+agones_client::~agones_client() = default;
+
+void agones_client::keep_density(std::function<void(const allocation_request&)> on_allocation) {
+    if (density_) return;
+    density_options o;
+    o.host = options_.host;
+    o.port = options_.port;
+    o.request_timeout_ns = options_.request_timeout_ns;
+    o.retry_initial_ns = options_.retry_initial_ns;
+    o.retry_max_ns = options_.retry_max_ns;
+    density_ = std::make_unique<density_sync>(io_, o, log_, std::move(on_allocation));
+}
+
+void agones_client::want_density(density_state desired) {
+    if (density_) density_->want(std::move(desired));
+}
+
 void agones_client::start() {
     if (started_) return;
     started_ = true;
     boost::asio::co_spawn(io_, run(), boost::asio::detached);
+    if (density_ && !stopping_) density_->start();
 }
 
 void agones_client::shutdown(std::function<void()> done) {
@@ -30,7 +49,8 @@ void agones_client::shutdown(std::function<void()> done) {
     }
     if (stopping_) return;
     stopping_ = true;
-    wake_.cancel();  // out of the backoff or ping wait, on to /shutdown
+    wake_.cancel();                  // out of the backoff or ping wait, on to /shutdown
+    if (density_) density_->stop();  // the GameServer goes away with the process
     deadline_.expires_after(std::chrono::nanoseconds(options_.shutdown_timeout_ns));
     deadline_.async_wait([this](const boost::system::error_code& ec) {
         if (!ec) finish_shutdown("timed out");

@@ -4,10 +4,15 @@
 // advances, POST /shutdown when the match ends. Agones marks a server Unhealthy when pings
 // stop, so they are sent only while `healthy()` says the world is really stepping: a wedged
 // tick loop must look dead even though this io thread still runs.
+// With keep_density(), it also keeps the Counter `rooms` and the List `players` true and hears
+// allocations (density_sync.hpp): high density, many matches in one game server.
 #include <boost/asio.hpp>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+
+#include "server/ops/density_reconciler.hpp"
 
 namespace arena::ops {
 
@@ -23,9 +28,12 @@ struct agones_options {
 
 using log_fn = std::function<void(const std::string&)>;
 
+class density_sync;
+
 class agones_client {
 public:
     agones_client(boost::asio::io_context& io, agones_options options, std::function<bool()> healthy, log_fn log);
+    ~agones_client();
 
     // POST /ready (retrying with backoff until the sidecar answers 2xx), then the health pings.
     void start();
@@ -33,6 +41,15 @@ public:
     // after the sidecar accepted, or after shutdown_timeout_ns, whichever comes first.
     // Idempotent: a second call's `done` is called too.
     void shutdown(std::function<void()> done);
+
+    // High density: from start() on, keep `rooms` and `players` at what want_density() last
+    // said, and call `on_allocation` (on the io thread) for each allocation the GameServer
+    // watch shows. Call before start(); the process must call want_density() from within
+    // `on_allocation` once it created the match, so that `rooms` never counts it twice.
+    void keep_density(std::function<void(const allocation_request&)> on_allocation);
+    void want_density(density_state desired);
+    // The sync, once keep_density() was called (tests read its state).
+    const density_sync* density() const { return density_.get(); }
 
     bool is_ready() const { return ready_; }
     uint64_t health_pings() const { return health_pings_; }
@@ -55,6 +72,7 @@ private:
     bool ready_ = false;
     uint64_t health_pings_ = 0;
     std::vector<std::function<void()>> done_;
+    std::unique_ptr<density_sync> density_;
 };
 
 }  // namespace arena::ops

@@ -29,10 +29,24 @@ void ops_service::start_after_listening() {
     }
     if (options_.agones && !agones_) {
         agones_ = std::make_unique<agones_client>(io_, options_.agones_sdk, healthy_, log_);
+        if (on_allocation_) {
+            agones_->keep_density(on_allocation_);
+            if (density_) agones_->want_density(*density_);
+        }
         if (log_)
             log_("agones: sidecar at " + options_.agones_sdk.host + ":" + std::to_string(options_.agones_sdk.port));
         agones_->start();
     }
+}
+
+void ops_service::keep_density(std::function<void(const allocation_request&)> on_allocation) {
+    on_allocation_ = std::move(on_allocation);
+}
+
+void ops_service::want_density(density_state desired) {
+    if (!options_.agones) return;
+    if (agones_) agones_->want_density(desired);
+    density_ = std::move(desired);
 }
 
 void ops_service::on_match_end(std::function<void()> done) {

@@ -38,6 +38,14 @@ public:
     // the io thread once it accepted or gave up; without Agones, `done` is simply posted.
     void on_match_end(std::function<void()> done);
 
+    // High density on Agones (density_sync.hpp); nothing without Agones. Call
+    // keep_density() before start_after_listening(): `on_allocation` creates the match an
+    // allocation names and then calls want_density(). want_density(): the matches and players
+    // now (cheap to call often: only a change is sent).
+    void keep_density(std::function<void(const allocation_request&)> on_allocation);
+    void want_density(density_state desired);
+    bool keeps_density() const { return options_.agones && static_cast<bool>(on_allocation_); }
+
     // The /metrics body now, process figures included.
     std::string metrics_text() const;
     // The address the endpoint listens on: --metrics-bind, else --bind.
@@ -56,6 +64,8 @@ private:
     log_fn log_;
     std::unique_ptr<http_server> http_;
     std::unique_ptr<agones_client> agones_;
+    std::function<void(const allocation_request&)> on_allocation_;
+    std::optional<density_state> density_;  // the last wanted, for an Agones client made later
 };
 
 }  // namespace arena::ops

@@ -393,7 +393,7 @@ TEST_CASE("a match's output on a worker thread reaches its clients in the order 
     }
 }
 
-TEST_CASE("a match created under a name the caller gives keeps it; a name in use or malformed is refused",
+TEST_CASE("a match created under a name the caller gives keeps it, and a name in use or malformed is refused",
           "[registry]") {
     process p;
     auto made = p.matches.create("duel", true, "", "tournament-7");

@@ -1,7 +1,7 @@
 // Arena's browser SDK: the client core in WebAssembly and what a game draws with.
 export { connect, ArenaClient, PROTOCOL_ERROR_CLOSE_CODE } from './client.js';
-export { listMatches, getMatch, createMatch, joinOrCreate, join, create } from './lobby.js';
-export type { MatchInfo, LobbyOptions } from './lobby.js';
+export { listModes, listMatches, getMatch, createMatch, joinOrCreate, join, create } from './lobby.js';
+export type { ModeInfo, MatchInfo, LobbyOptions } from './lobby.js';
 export type { ConnectOptions, SocketLike, Welcome, SnapshotEvent, DrawBody, RenderState } from './client.js';
 export { Core, Payload } from './core.js';
 export type { BodyState, Shape, StaticBody, ReplayResult, CoreModuleOptions } from './core.js';

@@ -44,6 +44,21 @@ async function request<T>(base: string, path: string, options: LobbyOptions, ini
   return body as T;
 }
 
+/** One mode as GET /modes describes it. */
+export interface ModeInfo {
+  name: string;
+  capacity: number;
+  preset: string;
+  rules: string;
+  /** Seconds a match of the mode lasts; 0: no limit. */
+  duration: number;
+}
+
+/** The modes a client may ask for (joinOrCreate, createMatch). */
+export function listModes(base: string, options: LobbyOptions = {}): Promise<ModeInfo[]> {
+  return request<ModeInfo[]>(base, '/modes', options);
+}
+
 /** The open matches the server lists (private ones are not). */
 export function listMatches(base: string, options: LobbyOptions = {}): Promise<MatchInfo[]> {
   return request<MatchInfo[]>(base, '/matches', options);
