@@ -121,7 +121,8 @@ int main(int argc, char** argv) {
         p.clients.push_back(std::make_unique<kept_connection>("10.0.0." + std::to_string(i % 250) + ":1"));
         kept_connection& c = *p.clients.back();
         full_matches.match_of(c).connect(c);
-        const protocol::hello_msg hello{protocol::protocol_version, "p" + std::to_string(i), "", true, false, "", "room8"};
+        const protocol::hello_msg hello{
+            protocol::protocol_version, "p" + std::to_string(i), "", true, false, "", "room8"};
         in.take(c, protocol::encode_hello(hello), std::nullopt);
     }
     for (int i = 0; i < 120; ++i) tick_with_inputs(full_matches, in, p);  // warm: baselines, buffers
@@ -131,7 +132,9 @@ int main(int argc, char** argv) {
     for (uint32_t i = 0; i < ticks; ++i) spent.push_back(tick_with_inputs(full_matches, in, p));
     std::sort(spent.begin(), spent.end());
     const double matches = static_cast<double>(full_matches.size());  // the default match filled first
-    auto ms_at = [&](double q) { return static_cast<double>(spent[static_cast<size_t>(q * (spent.size() - 1))]) / 1e6; };
+    auto ms_at = [&](double q) {
+        return static_cast<double>(spent[static_cast<size_t>(q * (spent.size() - 1))]) / 1e6;
+    };
     double mean = 0;
     for (int64_t s : spent) mean += static_cast<double>(s) / 1e6;
     mean /= static_cast<double>(spent.size());

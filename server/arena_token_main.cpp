@@ -1,5 +1,7 @@
 // arena-token: mints a signed join token for arena-server --token-secret, or prints the
 // server's current UDP connect key (--udp-connect-key) for clients that join over UDP.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <variant>
 
@@ -18,7 +20,7 @@ constexpr arena::cli::number_bound ttl_bound{0, 365 * 86400, true, "s"};
 
 int main(int argc, char** argv) {
     CLI::App app{"arena-token: mint a signed join token", "arena-token"};
-    std::string secret_path, name;
+    std::string secret_path, name, match;
     int64_t ttl = 3600;
     bool connect_key = false;
     app.add_option("--secret", secret_path, "the server's secret file (at least 32 bytes)")->required();
@@ -28,12 +30,17 @@ int main(int argc, char** argv) {
         "requires (required unless --udp-connect-key)");
     auto* ttl_option = app.add_option("--ttl", ttl, "seconds until the token expires (default 3600)")
                            ->check(arena::cli::bounded(ttl_bound));
+    auto* match_option =
+        app.add_option("--match", match,
+                       "the one match the token is good for (its id: 1 to 64 of A-Z, a-z, 0-9, '_' and '-'); "
+                       "without it, any match of the server");
     app.add_flag("--udp-connect-key", connect_key,
                  "print, instead of a token, the server's current UDP connect key: a decimal number a UDP client "
                  "puts in ENet's connect data (enet_host_connect's last argument); the server accepts it for 5 "
                  "to 10 minutes")
         ->excludes(name_option)
-        ->excludes(ttl_option);
+        ->excludes(ttl_option)
+        ->excludes(match_option);
     if (int code = arena::cli::parse_or_exit_code(app, argc, argv); code >= 0) return code;
     if (!connect_key && name_option->count() == 0) {
         std::fprintf(stderr, "arena-token: --name is required (see --help)\n");
@@ -42,6 +49,13 @@ int main(int argc, char** argv) {
     // A token for a name the server refuses would only fail later, at the player's Hello.
     if (auto problem = connect_key ? std::nullopt : arena::protocol::player_name_problem(name)) {
         std::fprintf(stderr, "arena-token: --name: %s\n", problem->c_str());
+        return 2;
+    }
+    const bool match_id_ok = std::all_of(match.begin(), match.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+    });
+    if (match.size() > 64 || !match_id_ok) {
+        std::fprintf(stderr, "arena-token: --match: 1 to 64 of A-Z, a-z, 0-9, '_' and '-'\n");
         return 2;
     }
     auto secret = arena::auth::token_secret::load(secret_path);
@@ -54,6 +68,6 @@ int main(int argc, char** argv) {
         std::printf("%u\n", signer.connect_key(arena::auth::unix_now()));
         return 0;
     }
-    std::printf("%s\n", signer.mint(name, arena::auth::unix_now() + ttl).c_str());
+    std::printf("%s\n", signer.mint(name, arena::auth::unix_now() + ttl, match).c_str());
     return 0;
 }

@@ -14,6 +14,7 @@ namespace {
 
 constexpr size_t min_secret_bytes = 32;
 constexpr std::string_view version_tag = "v1";
+constexpr std::string_view match_version_tag = "v2";  // v1 and the match the token is good for
 
 std::string to_base64url(std::string_view bytes) {
     const int variant = sodium_base64_VARIANT_URLSAFE_NO_PADDING;
@@ -64,8 +65,10 @@ std::string token_secret::mac(std::string_view message) const {
     return std::string(reinterpret_cast<const char*>(out), sizeof out);
 }
 
-std::string token_secret::mint(std::string_view name, int64_t expires) const {
-    const std::string body = std::string(version_tag) + "." + to_base64url(name) + "." + std::to_string(expires);
+std::string token_secret::mint(std::string_view name, int64_t expires, std::string_view match) const {
+    std::string body(match.empty() ? version_tag : match_version_tag);
+    body.append(".").append(to_base64url(name)).append(".").append(std::to_string(expires));
+    if (!match.empty()) body.append(".").append(to_base64url(match));
     return body + "." + to_base64url(mac(body));
 }
 
@@ -80,15 +83,24 @@ result<token_claims> token_secret::verify(std::string_view token, int64_t now) c
     if (!given_mac || given_mac->size() != expected.size() ||
         sodium_memcmp(given_mac->data(), expected.data(), expected.size()) != 0)
         return refused::failure("token signature does not match this server's secret");
-    // The signature is ours, so the body has the shape we wrote.
+    // The signature is ours, so the body has the shape we wrote: v1.NAME.EXPIRES, or
+    // v2.NAME.EXPIRES.MATCH.
     const size_t first = body.find('.'), second = body.find('.', first + 1);
-    if (body.substr(0, first) != version_tag || second == std::string_view::npos)
+    const std::string_view tag = body.substr(0, first);
+    if ((tag != version_tag && tag != match_version_tag) || second == std::string_view::npos)
         return refused::failure("malformed token");
+    const size_t third = tag == match_version_tag ? body.find('.', second + 1) : body.size();
+    if (third == std::string_view::npos) return refused::failure("malformed token");
     const auto name = from_base64url(body.substr(first + 1, second - first - 1));
     if (!name) return refused::failure("malformed token");
-    token_claims claims{*name, 0};
+    token_claims claims{*name, 0, {}};
+    if (tag == match_version_tag) {
+        const auto match = from_base64url(body.substr(third + 1));
+        if (!match || match->empty()) return refused::failure("malformed token");
+        claims.match = *match;
+    }
     try {
-        claims.expires = std::stoll(std::string(body.substr(second + 1)));
+        claims.expires = std::stoll(std::string(body.substr(second + 1, third - second - 1)));
     } catch (const std::exception&) {
         return refused::failure("malformed token");
     }

@@ -29,8 +29,8 @@ match::token_check token_check_of(const host_options& o) {
     if (!o.token_secret) return {};
     return [secret = *o.token_secret](std::string_view token) {
         auto claims = secret.verify(std::string(token), auth::unix_now());
-        if (!claims) return result<std::string>::failure(std::move(claims.error));
-        return result<std::string>::success(std::move(claims.value.name));
+        if (!claims) return result<match::signed_token>::failure(std::move(claims.error));
+        return result<match::signed_token>::success({std::move(claims.value.name), std::move(claims.value.match)});
     };
 }
 

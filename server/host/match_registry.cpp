@@ -151,7 +151,7 @@ match::match* match_registry::route_hello(match::connection& c, const protocol::
     if ((hello.match.empty() && hello.mode.empty()) || !current.waiting_for_hello(c)) return &current;
     // The Hello's own rules first (version, name, token, lengths), so that a bad Hello is
     // refused for what it is, whatever it asks to join.
-    if (auto no = current.seat_refusal(hello); no && no->code != RejectCode::server_full) {
+    if (auto no = current.seat_refusal(hello, false); no && no->code != RejectCode::server_full) {
         current.reject(c, *no);
         return nullptr;
     }

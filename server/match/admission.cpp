@@ -122,13 +122,18 @@ std::variant<admitted_hello, rejection> admission::admit_hello(const protocol::h
     // Open: the token is the client's own key. A spectator holds no identity: it has nothing
     // to reconnect to and takes nobody over.
     if (!check_token_) return admitted_hello{hello.name, hello.spectator ? "" : hello.token, hello.spectator};
-    result<std::string> signed_name = check_token_(hello.token);
-    if (!signed_name) return rejection{RejectCode::unauthorized, std::move(signed_name.error)};
-    const std::string& name = signed_name.value;
+    result<signed_token> signed_by = check_token_(hello.token);
+    if (!signed_by) return rejection{RejectCode::unauthorized, std::move(signed_by.error)};
+    const std::string& name = signed_by.value.name;
     if (auto problem = protocol::player_name_problem(name, limits_.max_name_bytes))
         return rejection{RejectCode::unauthorized, "the token's " + *problem};
     // The signed name is the player's identity, whatever name the Hello claims.
-    return admitted_hello{name, hello.spectator ? "" : "signed:" + name, hello.spectator};
+    return admitted_hello{name, hello.spectator ? "" : "signed:" + name, hello.spectator, signed_by.value.match};
+}
+
+std::optional<rejection> admission::admit_token_match(const admitted_hello& admitted, std::string_view match_id) {
+    if (admitted.token_match.empty() || admitted.token_match == match_id) return std::nullopt;
+    return rejection{RejectCode::unauthorized, "this token is good for match " + admitted.token_match + " only"};
 }
 
 std::variant<join_kind, rejection> admission::admit_join(std::optional<bool> same_identity_connected,

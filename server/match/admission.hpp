@@ -55,10 +55,15 @@ struct admission_limits {
     uint32_t ping_burst = 20;           // Pings at once
 };
 
-// What a signed token says: the player name it was minted for, or why it is refused ("token
-// expired"). Checking a signature needs a secret and the wall clock, so the caller hands a
-// checker in; without one the server is open and a token is the client's own opaque key.
-using token_check = std::function<result<std::string>(std::string_view token)>;
+// What a signed token says: the player name it was minted for and the match it is good for
+// ("": any), or why it is refused ("token expired"). Checking a signature needs a secret and
+// the wall clock, so the caller hands a checker in; without one the server is open and a token
+// is the client's own opaque key.
+struct signed_token {
+    std::string name;
+    std::string match;
+};
+using token_check = std::function<result<signed_token>(std::string_view token)>;
 
 // Where one client stands with admission; the match keeps one per connection.
 struct client_standing {
@@ -89,9 +94,10 @@ using admitted_message = std::variant<rejection, hello_message, input_message, p
 
 // A Hello that passed: who the player (or spectator) is.
 struct admitted_hello {
-    std::string name;        // the signed name with a token secret, else the Hello's name
-    std::string identity;    // the key a reconnection is matched by; empty: none (cannot reconnect)
-    bool spectator = false;  // Hello.spectator: joins without a body
+    std::string name;           // the signed name with a token secret, else the Hello's name
+    std::string identity;       // the key a reconnection is matched by; empty: none (cannot reconnect)
+    bool spectator = false;     // Hello.spectator: joins without a body
+    std::string token_match{};  // the one match its signed token is good for; "": any
 };
 
 // How a Hello joins, given the player already holding its identity, if any.
@@ -152,6 +158,10 @@ public:
     // (max_spectators) and take no player's slot; 0 admits none (server_full, as a full match
     // refuses a player).
     [[nodiscard]] std::optional<rejection> admit_spectator(size_t spectators) const;
+    // Whether a Hello admitted by admit_hello() may join the match `match_id`: its signed token
+    // names that match, or none.
+    [[nodiscard]] static std::optional<rejection> admit_token_match(const admitted_hello& admitted,
+                                                                    std::string_view match_id);
     // An Input from a joined client that arrived at `arrival_ns` (the transport's clock, in
     // nanoseconds): the rate, finite numbers, and the sequence order. Updates `client` (the
     // rate bucket, the last sequence, the idle time) when it passes.

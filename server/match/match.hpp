@@ -118,7 +118,9 @@ public:
     // The refusal `hello` would meet from the Hello and capacity rules now (admission's
     // admit_hello, then admit_join or admit_spectator), without joining: how a process with
     // many matches picks one with a seat. A reconnection or takeover always has its seat.
-    [[nodiscard]] std::optional<rejection> seat_refusal(const protocol::hello_msg& hello) const;
+    // `here` false: the Hello's own rules only, not whether its token is good for this match
+    // (the Hello is on its way to another).
+    [[nodiscard]] std::optional<rejection> seat_refusal(const protocol::hello_msg& hello, bool here = true) const;
     // The result the last Bye carries (over is false under rules that keep no score).
     [[nodiscard]] protocol::match_result result() const;
 

@@ -72,6 +72,10 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         return false;
     }
     admitted_hello& admitted = std::get<admitted_hello>(who);
+    if (auto no = admission::admit_token_match(admitted, config_.match_id)) {
+        reject(c, *no);
+        return false;
+    }
     if (admitted.spectator) return on_spectator_hello(c, cl, admitted);
     auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
     const std::optional<bool> same_connected =
@@ -189,10 +193,12 @@ match::player_map::const_iterator match::find_identity(const std::string& identi
     return const_cast<match*>(this)->find_identity(identity);
 }
 
-std::optional<rejection> match::seat_refusal(const protocol::hello_msg& hello) const {
+std::optional<rejection> match::seat_refusal(const protocol::hello_msg& hello, bool here) const {
     auto who = admission_.admit_hello(hello, draining_);
     if (auto* no = std::get_if<rejection>(&who)) return *no;
     const admitted_hello& admitted = std::get<admitted_hello>(who);
+    if (here)
+        if (auto no = admission::admit_token_match(admitted, config_.match_id)) return no;
     if (admitted.spectator) return admission_.admit_spectator(spectators_.size());
     const auto same = admitted.identity.empty() ? players_.end() : find_identity(admitted.identity);
     const std::optional<bool> same_connected =

@@ -46,6 +46,26 @@ TEST_CASE("expired, forged and malformed tokens are refused with a reason", "[au
     for (const char* junk : {"", ".", "v1", "garbage.token", "v1.x.y.z", "...."}) CHECK(!s.verify(junk, 1000).ok());
 }
 
+TEST_CASE("a token minted for one match says which, and one minted for none says none", "[auth]") {
+    const auto s = secret(key_a);
+    const std::string bound = s.mint("ada", 2000, "finals-7");
+    CHECK(bound.substr(0, 3) == "v2.");
+    auto claims = s.verify(bound, 1000);
+    REQUIRE(claims.ok());
+    CHECK(claims.value.name == "ada");
+    CHECK(claims.value.expires == 2000);
+    CHECK(claims.value.match == "finals-7");
+    CHECK(s.verify(s.mint("ada", 2000), 1000).value.match.empty());
+    // The match is signed: a token moved to another match (or stripped of it) is refused.
+    std::string moved = bound;
+    const size_t last = moved.rfind('.'), before = moved.rfind('.', last - 1);
+    moved.replace(before + 1, last - before - 1, "ZmluYWxzLTg");  // "finals-8"
+    CHECK(!s.verify(moved, 1000).ok());
+    std::string stripped = "v1" + bound.substr(2, before - 2) + bound.substr(last);
+    CHECK(!s.verify(stripped, 1000).ok());
+    CHECK(!s.verify(s.mint("ada", 1000, "finals-7"), 1000).ok());  // expired all the same
+}
+
 TEST_CASE("a secret shorter than 32 bytes is refused", "[auth]") {
     auto short_secret = token_secret::from_bytes("too short");
     REQUIRE(!short_secret.ok());

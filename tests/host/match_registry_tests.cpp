@@ -407,3 +407,34 @@ TEST_CASE("a match created under a name the caller gives keeps it, and a name in
     REQUIRE(c.welcome());
     CHECK(c.welcome()->match == "tournament-7");
 }
+
+TEST_CASE("a signed token that names a match joins that match and no other", "[registry][auth]") {
+    host::registry_options o = options();
+    // A checker as the server's: "for:ID" is a token good for match ID, anything else for any.
+    match::token_check check = [](std::string_view token) {
+        const std::string t(token);
+        return result<match::signed_token>::success({"player", t.rfind("for:", 0) == 0 ? t.substr(4) : std::string()});
+    };
+    host::match_registry matches(std::move(o), {}, check);
+    ops::process_counters counters;
+    host::intake in(matches, counters);
+    auto made = matches.create("duel", false, "", "finals");
+    REQUIRE(std::holds_alternative<host::hosted_match*>(made));
+    auto join = [&](fake_client& c, const std::string& token, const std::string& match_id, const std::string& mode) {
+        matches.match_of(c).connect(c);
+        in.take(c, protocol::encode_hello({protocol::protocol_version, "x", token, true, false, match_id, mode}),
+                std::nullopt);
+        matches.tick_all([] { return int64_t{0}; });
+    };
+    fake_client invited, elsewhere, by_mode, open_token;
+    join(invited, "for:finals", "finals", "");
+    REQUIRE(invited.welcome());
+    CHECK(invited.welcome()->match == "finals");
+    join(elsewhere, "for:finals", "", "");  // the default match
+    CHECK(elsewhere.rejected == protocol::RejectCode::unauthorized);
+    CHECK(elsewhere.reason == "this token is good for match finals only");
+    join(by_mode, "for:finals", "", "duel");  // a new duel, not the private finals
+    CHECK(by_mode.rejected == protocol::RejectCode::unauthorized);
+    join(open_token, "any", "finals", "");
+    CHECK(open_token.welcome());
+}

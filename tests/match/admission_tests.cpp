@@ -100,8 +100,8 @@ TEST_CASE("the Hello's limits: version, name and token length, each with its cod
 
 TEST_CASE("a token checker decides who the player is, and a refused token is unauthorized", "[match][admission]") {
     auto check = [](std::string_view token) {
-        if (token == "good") return arena::result<std::string>::success("signed-bob");
-        return arena::result<std::string>::failure("token forged");
+        if (token == "good") return arena::result<match::signed_token>::success({"signed-bob", ""});
+        return arena::result<match::signed_token>::failure("token forged");
     };
     std::vector<std::string> lines;
     match::match m({}, small_world(), match::logger([&](std::string_view l) { lines.emplace_back(l); }), check);

@@ -225,8 +225,8 @@ TEST_CASE("a spectator with a player's name and token takes nothing over and is 
     }
     SECTION("signed tokens: a good token lets a spectator watch under the signed name; a bad one does not") {
         auto check = [](std::string_view token) {
-            if (token == "good") return arena::result<std::string>::success("signed-bob");
-            return arena::result<std::string>::failure("token forged");
+            if (token == "good") return arena::result<match::signed_token>::success({"signed-bob", ""});
+            return arena::result<match::signed_token>::failure("token forged");
         };
         match::match m(config_with(), asteroids(), {}, check);
         watcher bob, bob_watching, forged;
