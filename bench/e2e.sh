@@ -6,7 +6,8 @@
 # and Arena under the same 200-client load in the same minute; then 50 matches of 8 in one process
 # against Colyseus's own matchmaker filling rooms of 8. One markdown table per part.
 # Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), E2E_LARGE (1000), E2E_LARGE_RADIUS (50),
-#      E2E_ROOMS_BOTS (400), COLYSEUS (../shared/peers/colyseus).
+#      E2E_ROOMS_BOTS (400), COLYSEUS (../shared/peers/colyseus),
+#      E2E_PARTS ("one colyseus rooms": which parts run).
 set -euo pipefail
 bin=${1:-build/bin}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,6 +18,8 @@ seconds=${E2E_SECONDS:-20}
 colyseus=${COLYSEUS:-$here/../../shared/peers/colyseus}
 work=$(mktemp -d /tmp/arena-bench-e2e.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+parts=" ${E2E_PARTS:-one colyseus rooms} "
+part() { [[ "$parts" == *" $1 "* ]]; }
 pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 
@@ -40,6 +43,7 @@ run_arena() {
   wait "$server" || true
 }
 
+if part one; then
 echo "## End to end: arena-server on CPU 1, arena-bots on CPU 0, ${seconds} s, 60 Hz ticks, 20 Hz snapshots"
 echo
 for n in $counts; do
@@ -58,8 +62,11 @@ echo
 echo "The window counts from the server's start to SIGTERM right after the bots' last second, joins included."
 echo "Default runs: delta snapshots and a 100 m view radius; 'full': BodyState snapshots of every body (the path"
 echo "for clients without delta support); bytes per body are the bots' received frames over the bodies they held."
+fi
 
-if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
+if ! part colyseus; then
+  :
+elif [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
   echo
   echo "## Against Colyseus: 200 clients sending 60 inputs/s, 60 Hz simulation, 20 Hz broadcast, server on CPU 1"
   echo
@@ -81,6 +88,7 @@ fi
 # 400), every body of a match in view, against Colyseus' matchmaker filling rooms of 8
 # (ROOM_SIZE=8) and the TCP floor with the same clients and Arena's snapshot size.
 rooms_bots=${E2E_ROOMS_BOTS:-400}
+part rooms || exit 0
 echo >&2
 echo "running Arena with $rooms_bots bots in matches of 8..." >&2
 echo '{"modes": [{"name": "room8", "preset": "asteroids", "rules": "sandbox", "max_players": 8,

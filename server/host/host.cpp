@@ -190,6 +190,7 @@ boost::asio::awaitable<void> process_host::tick_loop() {
 
 void process_host::run_due_ticks() {
     const uint32_t due = clock_.advance(now_ns());
+    count_late_ticks(due);
     if (due > 0)
         for (auto& t : transports_) t->read_before_tick();
     for (uint32_t i = 0; i < due; ++i) {
@@ -221,6 +222,22 @@ void process_host::run_due_ticks() {
         for (auto& t : transports_) t->check_stalls(now);
     }
     if (static_cast<double>(now - window_start_ns_) >= options_.stats_interval_s * 1e9) log_stats(now);
+}
+
+void process_host::count_late_ticks(uint32_t due) {
+    // Of `due` ticks run at once, all but the last fell due more than a tick interval ago; the
+    // clock gave up on those beyond its catch-up bound. Both are the process's, so every match
+    // running now counts them, by match and by mode.
+    const uint64_t late = due > 1 ? due - 1 : 0;
+    const uint64_t dropped = clock_.overruns() - overruns_counted_;
+    overruns_counted_ = clock_.overruns();
+    if (late == 0 && dropped == 0) return;
+    matches_.count_late_ticks(late, dropped);
+    for (const auto& [key, hosted] : matches_.matches()) {
+        mode_late_ticks& counts = mode_late_[hosted.mode];
+        counts.late += late;
+        counts.dropped += dropped;
+    }
 }
 
 void process_host::log_stats(int64_t now) {
@@ -271,6 +288,10 @@ ops::server_metrics process_host::metrics_snapshot() const {
         f.players += hosted.game->live_player_count();
     }
     for (const auto& [mode, ticks] : mode_ticks_) m.modes[mode].tick_duration_s = ticks;
+    for (const auto& [mode, counts] : mode_late_) {
+        m.modes[mode].ticks_late = counts.late;
+        m.modes[mode].ticks_dropped = counts.dropped;
+    }
     m.figures = [match = matches_.default_match().counters(), process = process_counters()](match::figure_sink& out) {
         report(match, out);
         report(process, out);

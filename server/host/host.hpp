@@ -78,6 +78,8 @@ private:
     void warn_about_descriptor_limit() const;
     boost::asio::awaitable<void> tick_loop();
     void run_due_ticks();
+    // Counts the late and dropped ticks of a batch of `due`, by match and by mode.
+    void count_late_ticks(uint32_t due);
     void log_stats(int64_t now);
     uint64_t open_connections() const;
     bool drained() const;  // no connection a shutdown waits for is open
@@ -92,6 +94,12 @@ private:
     match::token_check check_token_;  // the --token-secret's, for the matches and the lobby
     match_registry matches_;
     std::map<std::string, ops::histogram> mode_ticks_;  // one match's tick, seconds, by mode
+    struct mode_late_ticks {
+        uint64_t late = 0;     // match ticks run more than a tick interval after they fell due
+        uint64_t dropped = 0;  // match ticks the clock gave up on
+    };
+    std::map<std::string, mode_late_ticks> mode_late_;  // whole run, by mode
+    uint64_t overruns_counted_ = 0;                     // the clock's overruns already counted by mode
     ops::process_counters process_;  // whole run (connections_open and tick_overruns filled when read)
     arena::host::intake intake_{matches_, process_};
     tick_clock clock_;

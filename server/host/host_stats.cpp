@@ -86,7 +86,12 @@ void process_host::write_stats_json(const std::string& path) const {
             board.push_back(n.line);
             board_names.push_back(n.name);
         }
-        nlohmann::json one = {{"id", s.id}, {"mode", s.mode}, {"ended", s.ended}, {"winner", s.winner}};
+        nlohmann::json one = {{"id", s.id},
+                              {"mode", s.mode},
+                              {"ended", s.ended},
+                              {"winner", s.winner},
+                              {"ticks_late", s.ticks_late},
+                              {"ticks_dropped", s.ticks_dropped}};
         one["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(board, board_names));
         stats_json_sink match_figures(one);
         report(s.counters, match_figures);

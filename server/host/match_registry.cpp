@@ -147,8 +147,13 @@ hosted_match* match_registry::fullest_with_seat(std::string_view mode, const pro
 
 match::match* match_registry::route_hello(match::connection& c, const protocol::hello_msg& hello) {
     match::match& current = match_of(c);
+    // A signed token that names a match takes its player there when the Hello names none: an
+    // allocator that made the match and the token need not tell the client the id as well.
+    std::string wanted = hello.match;
+    if (wanted.empty() && !hello.token.empty() && check_token_)
+        if (auto signed_for = check_token_(hello.token)) wanted = signed_for.value.match;
     // A second Hello stays where it is, for its match to refuse it.
-    if ((hello.match.empty() && hello.mode.empty()) || !current.waiting_for_hello(c)) return &current;
+    if ((wanted.empty() && hello.mode.empty()) || !current.waiting_for_hello(c)) return &current;
     // The Hello's own rules first (version, name, token, lengths), so that a bad Hello is
     // refused for what it is, whatever it asks to join.
     if (auto no = current.seat_refusal(hello, false); no && no->code != RejectCode::server_full) {
@@ -156,15 +161,15 @@ match::match* match_registry::route_hello(match::connection& c, const protocol::
         return nullptr;
     }
     hosted_match* target = nullptr;
-    if (!hello.match.empty()) {
-        target = find(hello.match);
+    if (!wanted.empty()) {
+        target = find(wanted);
         if (!target || target->game->draining()) {
-            current.reject(c, {RejectCode::no_such_match, "no match '" + hello.match + "' on this server"});
+            current.reject(c, {RejectCode::no_such_match, "no match '" + wanted + "' on this server"});
             return nullptr;
         }
         if (!hello.mode.empty() && hello.mode != target->mode) {
-            current.reject(c, {RejectCode::no_such_match,
-                               "match '" + hello.match + "' plays " + target->mode + ", not " + hello.mode});
+            current.reject(
+                c, {RejectCode::no_such_match, "match '" + wanted + "' plays " + target->mode + ", not " + hello.mode});
             return nullptr;
         }
         if (auto no = target->game->seat_refusal(hello)) {
@@ -264,7 +269,8 @@ void match_registry::end(std::map<uint64_t, hosted_match>::iterator it, const st
     try {
         ended_.push_back(summary_of(m, why));
     } catch (const std::exception&) {
-        ended_.push_back({m.id, m.mode, why, {}, {}, 0});  // its rules cannot say their scoreboard
+        // Its rules cannot say their scoreboard.
+        ended_.push_back({m.id, m.mode, why, {}, {}, 0, m.ticks_late, m.ticks_dropped});
     }
     matches_.erase(it);
 }
@@ -295,7 +301,16 @@ match_summary match_registry::summary_of(const hosted_match& m, std::string ende
             std::move(ended),
             m.game->counters(),
             m.game->scoreboard(),
-            scored ? m.game->game_rules().winner() : 0};
+            scored ? m.game->game_rules().winner() : 0,
+            m.ticks_late,
+            m.ticks_dropped};
+}
+
+void match_registry::count_late_ticks(uint64_t late, uint64_t dropped) {
+    for (auto& [key, m] : matches_) {
+        m.ticks_late += late;
+        m.ticks_dropped += dropped;
+    }
 }
 
 std::vector<match_summary> match_registry::summaries() const {

@@ -35,9 +35,11 @@ struct hosted_match {
     bool on_demand = false;  // created by a Hello's mode or the lobby: it ends when empty
     bool listed = true;      // false: private, left out of the lobby's list (its id is the invitation)
     int64_t created_unix_ms = 0;
-    std::string creator;       // the address whose Hello or lobby request created it ("": the process)
-    uint32_t empty_ticks = 0;  // ticks since it last had a client
-    uint32_t end_tick = 0;     // its mode's duration ends it at this tick; 0: no limit
+    std::string creator;         // the address whose Hello or lobby request created it ("": the process)
+    uint32_t empty_ticks = 0;    // ticks since it last had a client
+    uint32_t end_tick = 0;       // its mode's duration ends it at this tick; 0: no limit
+    uint64_t ticks_late = 0;     // ticks it ran more than a tick interval after they fell due
+    uint64_t ticks_dropped = 0;  // ticks the process fell too far behind to run (tick_clock)
     std::unique_ptr<match::match> game;
 };
 
@@ -49,6 +51,8 @@ struct match_summary {
     match::match_counters counters;
     std::vector<match::match::named_score> scoreboard;
     uint32_t winner = 0;
+    uint64_t ticks_late = 0;
+    uint64_t ticks_dropped = 0;
 };
 
 struct registry_options {
@@ -108,6 +112,9 @@ public:
     // default match's is rethrown: the process cannot go on without it).
     void tick_all(const std::function<int64_t()>& now_ns,
                   const std::function<void(const hosted_match&, int64_t spent_ns)>& ticked = {});
+    // The process fell behind: `late` of the ticks about to run are catching up, and `dropped`
+    // were given up (tick_clock). Every match running counts them: its own ticks were late.
+    void count_late_ticks(uint64_t late, uint64_t dropped);
     // Told of every match as it starts (those running now at once) and as it ends, before it
     // is forgotten (its last tick done, its Bye sent): a recording per match.
     void observe(std::function<void(hosted_match&)> started,

@@ -55,6 +55,13 @@ void render_modes(text_writer& w, const server_metrics& m) {
     w.family("arena_match_tick_duration_seconds", "histogram", "Time one match spends in one world step, by mode.");
     for (const auto& [mode, f] : m.modes)
         w.histogram_samples("arena_match_tick_duration_seconds", f.tick_duration_s, {{"mode", mode}});
+    w.family("arena_match_ticks_late_total", "counter",
+             "Match ticks run more than a tick interval after they fell due (the process fell behind), by mode.");
+    for (const auto& [mode, f] : m.modes) w.sample("arena_match_ticks_late_total", f.ticks_late, {{"mode", mode}});
+    w.family("arena_match_ticks_dropped_total", "counter",
+             "Match ticks given up because the process fell further behind than it catches up, by mode.");
+    for (const auto& [mode, f] : m.modes)
+        w.sample("arena_match_ticks_dropped_total", f.ticks_dropped, {{"mode", mode}});
 }
 
 void render_lifecycle(text_writer& w, const server_metrics& m) {

@@ -23,13 +23,16 @@ struct mode_figures {
     uint64_t matches = 0;
     uint64_t players = 0;                                  // with a live connection, in every match of the mode
     histogram tick_duration_s{tick_duration_buckets_s()};  // one match's step, seconds
+    uint64_t ticks_late = 0;                               // match ticks run more than a tick interval late, whole run
+    uint64_t ticks_dropped = 0;  // match ticks given up because the process fell behind, whole run
 };
 
 struct server_metrics {
     // Tick loop.
     histogram tick_duration_s{tick_duration_buckets_s()};  // seconds per world step
     double tick_budget_s = 0;                              // 1 / tick rate, seconds
-    // By mode: arena_matches, arena_players, arena_match_tick_duration_seconds.
+    // By mode: arena_matches, arena_players, arena_match_tick_duration_seconds,
+    // arena_match_ticks_late_total, arena_match_ticks_dropped_total.
     std::map<std::string, mode_figures> modes;
     // Every counter and gauge of the default match and the process, through their report()s.
     std::function<void(match::figure_sink&)> figures;

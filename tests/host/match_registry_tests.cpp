@@ -410,15 +410,17 @@ TEST_CASE("a match created under a name the caller gives keeps it, and a name in
 
 TEST_CASE("a signed token that names a match joins that match and no other", "[registry][auth]") {
     host::registry_options o = options();
-    // A checker as the server's: "for:ID" is a token good for match ID, anything else for any.
+    // A checker as the server's: "NAME@ID" is NAME's token good for match ID, "NAME" for any.
     match::token_check check = [](std::string_view token) {
         const std::string t(token);
-        return result<match::signed_token>::success({"player", t.rfind("for:", 0) == 0 ? t.substr(4) : std::string()});
+        const size_t at = t.find('@');
+        if (at == std::string::npos) return result<match::signed_token>::success({t, ""});
+        return result<match::signed_token>::success({t.substr(0, at), t.substr(at + 1)});
     };
     host::match_registry matches(std::move(o), {}, check);
     ops::process_counters counters;
     host::intake in(matches, counters);
-    auto made = matches.create("duel", false, "", "finals");
+    auto made = matches.create("asteroids", false, "", "finals");
     REQUIRE(std::holds_alternative<host::hosted_match*>(made));
     auto join = [&](fake_client& c, const std::string& token, const std::string& match_id, const std::string& mode) {
         matches.match_of(c).connect(c);
@@ -426,15 +428,48 @@ TEST_CASE("a signed token that names a match joins that match and no other", "[r
                 std::nullopt);
         matches.tick_all([] { return int64_t{0}; });
     };
-    fake_client invited, elsewhere, by_mode, open_token;
-    join(invited, "for:finals", "finals", "");
+    fake_client invited, token_alone, elsewhere, other_mode, open_token;
+    join(invited, "ada@finals", "finals", "");
     REQUIRE(invited.welcome());
     CHECK(invited.welcome()->match == "finals");
-    join(elsewhere, "for:finals", "", "");  // the default match
+    join(token_alone, "bob@finals", "", "");  // naming no match: the token's
+    REQUIRE(token_alone.welcome());
+    CHECK(token_alone.welcome()->match == "finals");
+    join(elsewhere, "cy@finals", "default", "");
     CHECK(elsewhere.rejected == protocol::RejectCode::unauthorized);
     CHECK(elsewhere.reason == "this token is good for match finals only");
-    join(by_mode, "for:finals", "", "duel");  // a new duel, not the private finals
-    CHECK(by_mode.rejected == protocol::RejectCode::unauthorized);
-    join(open_token, "any", "finals", "");
+    join(other_mode, "di@finals", "", "duel");  // finals plays asteroids: not a new duel either
+    CHECK(other_mode.rejected == protocol::RejectCode::no_such_match);
+    CHECK(matches.size() == 2);
+    join(open_token, "eve", "finals", "");
     CHECK(open_token.welcome());
+    CHECK(matches.find("finals")->game->live_player_count() == 3);
+}
+
+TEST_CASE("late and dropped ticks are counted by every match running, and kept when it ends", "[registry][late]") {
+    process p;
+    fake_client c;
+    p.join(c, "ada", "", "duel");
+    const std::string id = c.welcome()->match;
+    p.matches.count_late_ticks(3, 1);                 // the process fell behind: both matches were late
+    auto made = p.matches.create("asteroids", true);  // after the stall: none of it is its
+    REQUIRE(std::holds_alternative<host::hosted_match*>(made));
+    const std::string later = std::get<host::hosted_match*>(made)->id;
+    p.matches.count_late_ticks(2, 0);
+    CHECK(p.matches.find(id)->ticks_late == 5);
+    CHECK(p.matches.find(id)->ticks_dropped == 1);
+    CHECK(p.matches.find(later)->ticks_late == 2);
+    CHECK(p.matches.find(later)->ticks_dropped == 0);
+    CHECK(p.matches.default_match().counters().ticks >= 1);
+    p.in.take(c, protocol::encode_bye("done"), std::nullopt);
+    for (int i = 0; i < 30; ++i) p.tick();
+    REQUIRE_FALSE(p.matches.find(id));
+    bool found = false;
+    for (const host::match_summary& s : p.matches.summaries())
+        if (s.id == id) {
+            found = true;
+            CHECK(s.ticks_late == 5);
+            CHECK(s.ticks_dropped == 1);
+        }
+    CHECK(found);
 }

@@ -1,9 +1,12 @@
 // The lobby on arena-server's HTTP port (server/host/lobby.*, docs/MATCHES.md) end to end:
 // list, create (listed and private), join the created match by its id over the WebSocket,
-// and the refusals: unknown mode, bad body, too large a body, a wrong method, no room.
+// the refusals: unknown mode, bad body, too large a body, a wrong method, no room; and one
+// address that creates and leaves matches starving no other.
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "protocol/decode.hpp"
 #include "protocol/version.hpp"
@@ -105,4 +108,50 @@ TEST_CASE("the lobby refuses what it cannot take with a status and one line", "[
     CHECK(status_of(raw_http(s.http_port, "GET /matches/0123456789abcdef HTTP/1.1\r\nHost: x\r\n\r\n")) == 404);
     // Still serving.
     CHECK(status_of(raw_http(s.http_port, "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")) == 200);
+}
+
+// The availability test of the lobby: an attacker at 127.0.0.1 joins and leaves by mode and
+// creates matches until refused; hosts at other addresses (127.0.0.2-4: the whole 127/8 is
+// loopback) still join and create.
+TEST_CASE("an address that creates matches and joins and leaves starves no other", "[net][ws][lobby][abuse]") {
+    http_server s({"--modes", modes_file(), "--max-matches", "6"});
+    auto join_by_mode = [&](const std::string& from) -> std::optional<protocol::welcome_info> {
+        ws_client c(s.http_port, "", "/ws", 0, from);
+        if (!c.open()) return std::nullopt;
+        protocol::hello_msg hello{protocol::protocol_version, "x", "", true, false, "", "duel"};
+        if (!c.send_binary(protocol::encode_hello(hello))) return std::nullopt;
+        const auto frame = c.read_until(protocol::Payload::Welcome, 3000ms);
+        if (!frame) return std::nullopt;
+        auto welcome = protocol::decode_welcome(*message_of(*frame));
+        if (!welcome) return std::nullopt;
+        return welcome.value;  // and leaves, as the client closes
+    };
+    auto create_from = [&](const std::string& from) {
+        return status_of(raw_http(s.http_port,
+                                  "POST /matches HTTP/1.1\r\nHost: x\r\nContent-Length: 33\r\n\r\n"
+                                  R"({"mode": "duel", "private": true})",
+                                  3000ms, from));
+    };
+    // Joining and leaving reuses the match it made: one duel, however often.
+    std::string first;
+    for (int i = 0; i < 10; ++i) {
+        const auto welcome = join_by_mode("127.0.0.1");
+        REQUIRE(welcome);
+        if (i == 0) first = welcome->match;
+        CHECK(welcome->match == first);
+    }
+    // Then it creates until refused: it may hold 4 matches without a client.
+    int created = 0;
+    for (int i = 0; i < 8; ++i)
+        if (create_from("127.0.0.1") == 201) ++created;
+    CHECK(created == 3);                                   // its duel, empty now, is the fourth
+    CHECK(get_json(s.http_port, "/matches").size() == 2);  // the default and the listed duel
+    // Another host joins at once (the attacker's open duel has seats), and another creates.
+    const auto honest = join_by_mode("127.0.0.2");
+    REQUIRE(honest);
+    CHECK(honest->mode == "duel");
+    CHECK(create_from("127.0.0.3") == 201);  // the sixth of six
+    CHECK(create_from("127.0.0.3") == 503);  // the process is full...
+    std::this_thread::sleep_for(5500ms);
+    CHECK(create_from("127.0.0.4") == 201);  // ...until a match empty for 5 s gives its slot up
 }

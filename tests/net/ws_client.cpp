@@ -1,5 +1,6 @@
 #include "ws_client.hpp"
 
+#include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -39,13 +40,16 @@ struct ws_client::impl {
     }
 };
 
-ws_client::ws_client(uint16_t port, const std::string& origin, const std::string& target, int receive_buffer)
+ws_client::ws_client(uint16_t port, const std::string& origin, const std::string& target, int receive_buffer,
+                     const std::string& from)
     : impl_(std::make_unique<impl>()) {
     boost::system::error_code ec;
-    if (receive_buffer > 0) {
-        // Before connecting, when TCP negotiates its window.
-        impl_->ws.next_layer().open(tcp::v4(), ec);
+    if (receive_buffer > 0 || !from.empty()) impl_->ws.next_layer().open(tcp::v4(), ec);
+    if (receive_buffer > 0)  // before connecting, when TCP negotiates its window
         impl_->ws.next_layer().set_option(boost::asio::socket_base::receive_buffer_size(receive_buffer), ec);
+    if (!from.empty()) {
+        impl_->ws.next_layer().bind(tcp::endpoint(boost::asio::ip::make_address(from), 0), ec);
+        if (ec) return;
     }
     impl_->ws.next_layer().connect(tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), port), ec);
     if (ec) return;
@@ -159,8 +163,18 @@ int ws_client::close_code() const {
     return static_cast<int>(impl_->ws.reason().code);
 }
 
-std::string raw_http(uint16_t port, const std::string& request, std::chrono::milliseconds timeout) {
+std::string raw_http(uint16_t port, const std::string& request, std::chrono::milliseconds timeout,
+                     const std::string& from) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (!from.empty()) {
+        sockaddr_in local{};
+        local.sin_family = AF_INET;
+        if (::inet_pton(AF_INET, from.c_str(), &local.sin_addr) != 1 ||
+            ::bind(fd, reinterpret_cast<sockaddr*>(&local), sizeof local) != 0) {
+            ::close(fd);
+            return "";
+        }
+    }
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_port = htons(port);

@@ -16,9 +16,10 @@ namespace arena::test {
 class ws_client {
 public:
     // Connects to 127.0.0.1:port and upgrades `target`, with an Origin header unless empty;
-    // receive_buffer > 0 shrinks the socket's receive buffer (a client that fills up fast).
+    // receive_buffer > 0 shrinks the socket's receive buffer (a client that fills up fast);
+    // `from`: the local address to connect from (another 127/8 address: another host), or "".
     explicit ws_client(uint16_t port, const std::string& origin = "", const std::string& target = "/ws",
-                       int receive_buffer = 0);
+                       int receive_buffer = 0, const std::string& from = "");
     ~ws_client();
     ws_client(const ws_client&) = delete;
     ws_client& operator=(const ws_client&) = delete;
@@ -50,9 +51,10 @@ private:
     std::unique_ptr<impl> impl_;
 };
 
-// Sends `request` as is on a new connection to 127.0.0.1:port and returns everything the
-// server answered before it closed (or `timeout` passed).
+// Sends `request` as is on a new connection to 127.0.0.1:port (from the local address `from`
+// unless empty) and returns everything the server answered before it closed (or `timeout`
+// passed).
 std::string raw_http(uint16_t port, const std::string& request,
-                     std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+                     std::chrono::milliseconds timeout = std::chrono::milliseconds(3000), const std::string& from = "");
 
 }  // namespace arena::test

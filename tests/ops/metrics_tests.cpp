@@ -52,6 +52,13 @@ server_metrics sample_metrics() {
         report(c, out);
         report(p, out);
     };
+    mode_figures& asteroids = m.modes["asteroids"];
+    asteroids.matches = 3;
+    asteroids.players = 17;
+    asteroids.tick_duration_s.observe(0.0004);
+    asteroids.ticks_late = 12;
+    asteroids.ticks_dropped = 1;
+    m.modes["sandbox"].matches = 1;
     m.version = "1.2.3";
     m.process = read_process_stats();
     return m;
@@ -193,6 +200,14 @@ TEST_CASE("ops metrics: the rendered values are the server's figures", "[ops][me
     CHECK(value_of(p, "arena_input_overflows_total") == "1");
     CHECK(value_of(p, "arena_build_info", "version=\"1.2.3\"") == "1");
     CHECK(value_of(p, "arena_draining") == "0");
+    CHECK(value_of(p, "arena_matches", "mode=\"asteroids\"") == "3");
+    CHECK(value_of(p, "arena_matches", "mode=\"sandbox\"") == "1");
+    CHECK(value_of(p, "arena_players", "mode=\"asteroids\"") == "17");
+    CHECK(value_of(p, "arena_match_tick_duration_seconds_count", "mode=\"asteroids\"") == "1");
+    CHECK(p.types.at("arena_match_ticks_late_total") == "counter");
+    CHECK(value_of(p, "arena_match_ticks_late_total", "mode=\"asteroids\"") == "12");
+    CHECK(value_of(p, "arena_match_ticks_late_total", "mode=\"sandbox\"") == "0");
+    CHECK(value_of(p, "arena_match_ticks_dropped_total", "mode=\"asteroids\"") == "1");
 }
 
 TEST_CASE("ops metrics: process figures come from /proc/self", "[ops][metrics]") {
