@@ -25,6 +25,9 @@ void sort_by_cell_with_table(broadphase_scratch& s, uint32_t cells) {
     s.items.swap(s.swap_items);
 }
 
+// Below this many bodies a comparison sort beats the radix sort's passes over its counters.
+constexpr size_t small_sort_bodies = 128;
+
 // LSD radix sort of s.items on the cell, 11 bits a pass, only the passes the largest cell needs.
 // Each pass is a stable counting sort, so equal cells keep index order.
 void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
@@ -85,6 +88,10 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     s.cell_start.clear();
     if (table) {
         sort_by_cell_with_table(s, static_cast<uint32_t>(cells));
+    } else if (n <= small_sort_bodies) {
+        // The same order as the stable sort by cell: an item's low half is its body index,
+        // unique and increasing within a cell. A radix pass clears 2048 counters, whatever n.
+        std::sort(s.items.begin(), s.items.end());
     } else {
         radix_sort_by_cell(s, max_cell);
     }
