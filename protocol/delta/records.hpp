@@ -47,17 +47,21 @@ using width_counts = std::array<std::uint64_t, 65>;
 // The order that makes the class shortest, estimating each value by the smallest of its
 // width (the decoder does not care how the order was chosen).
 [[nodiscard]] inline unsigned best_order(const width_counts& widths) noexcept {
-    // Only widths present matter, and no order beyond the widest value can be shorter.
-    unsigned widest = 0;
+    // Only widths present matter (a class holds a few of the 65), and no order beyond the
+    // widest value can be shorter. Listing them first keeps the search to orders × present
+    // widths: walking all 65 widths for every order was most of a small match's encoding.
+    std::array<unsigned, 65> present{};
+    unsigned count = 0;
     for (unsigned w = 0; w < 65; ++w) {
-        if (widths[w] != 0) widest = w;
+        if (widths[w] != 0) present[count++] = w;
     }
+    const unsigned widest = count == 0 ? 0 : present[count - 1];
     unsigned best = 0;
     std::uint64_t best_bits = UINT64_MAX;
     for (unsigned k = 0; k <= widest && k <= max_golomb_order; ++k) {
         std::uint64_t bits = 0;
-        for (unsigned w = 0; w <= widest; ++w) {
-            if (widths[w] == 0) continue;
+        for (unsigned i = 0; i < count; ++i) {
+            const unsigned w = present[i];
             const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
             bits += widths[w] * golomb_bits(n, k);
         }

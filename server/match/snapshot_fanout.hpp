@@ -62,6 +62,8 @@ struct snapshot_client {
     // what it brought of the game; an older one changes nothing, so an ack that comes back
     // after a long loss does not make the client look as if it held nothing.
     void acknowledge(uint32_t tick) {
+        // Inputs come three to a snapshot, most acking the same one: what it brought is known.
+        if (tick == acked_tick) return;
         acked_tick = tick;
         game_held = std::max(game_held, views.game_at(tick));
     }
