@@ -115,7 +115,7 @@ double thread_cpu_ms() {
     return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
-struct result {
+struct scene_result {
     double best_ms = 1e300;  // CPU ms per step of 1/60 s, best run
     size_t pyramids = 0;
     size_t standing = 0;        // pyramids standing at the end of the last run
@@ -124,7 +124,7 @@ struct result {
 };
 
 // Every box's end position, in the scene's order: which pyramids stand (see the header).
-void check_standing(const scene& s, const std::vector<box_at>& end, result& r) {
+void check_standing(const scene& s, const std::vector<box_at>& end, scene_result& r) {
     r.pyramids = s.first_box.size() - 1;
     r.standing = 0;
     for (size_t p = 0; p + 1 < s.first_box.size(); ++p) {
@@ -141,14 +141,14 @@ void check_standing(const scene& s, const std::vector<box_at>& end, result& r) {
 
 // `step` once untimed (both engines create their contacts in the first step), then the rest timed.
 template <class Step>
-void time_steps(const scene& s, result& r, Step step) {
+void time_steps(const scene& s, scene_result& r, Step step) {
     step();
     const double t0 = thread_cpu_ms();
     for (int k = 1; k < s.steps; ++k) step();
     r.best_ms = std::min(r.best_ms, (thread_cpu_ms() - t0) / (s.steps - 1));
 }
 
-void run_arena(const scene& s, result& r) {
+void run_arena(const scene& s, scene_result& r) {
     world::world_config c;
     c.dt = step_dt;
     c.substeps = sub_steps;
@@ -176,7 +176,7 @@ void run_arena(const scene& s, result& r) {
     check_standing(s, end, r);
 }
 
-void run_box2d(const scene& s, result& r) {
+void run_box2d(const scene& s, scene_result& r) {
     b2World w(b2Vec2(0, -10));
     w.SetAllowSleeping(false);
     b2BodyDef ground_def;
@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
         const scene s = make_scene(name, quick);
         // many_pyramids takes a minute a run in each engine: one run.
         const int runs = quick || s.boxes.size() > 10000 ? 1 : 2;
-        result arena_r, box2d_r;
+        scene_result arena_r, box2d_r;
         for (int k = 0; k < runs; ++k) {
             run_arena(s, arena_r);
             run_box2d(s, box2d_r);

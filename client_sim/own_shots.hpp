@@ -90,7 +90,7 @@ public:
 private:
     bool enabled_;
     std::uint32_t player_id_;
-    rules::asteroids_params params_;  // the server's: make_rules() plays Asteroids with the defaults
+    rules::asteroids_params params_;  // the server's: its config's rules_params
     std::vector<predicted_shot> waiting_;
     std::vector<confirmed_shot> confirmed_;        // the server's bullets of ours, seen alive in the last view
     std::optional<std::uint32_t> last_confirmed_;  // the newest confirmed shot's input

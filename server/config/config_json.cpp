@@ -381,6 +381,10 @@ world::world_config read_world(const json& j) {
     if (const json* m = r.take("rocks")) read_rocks(*m, "rocks", c.rocks);
     if (const json* b = r.take("bodies")) read_bodies(*b, "bodies", c.bodies);
     r.read_enum("rules", c.rules, rules_names);
+    if (const json* p = r.take("rules_params")) {
+        if (!p->is_object()) throw bad_field{r.where("rules_params") + " must be an object"};
+        c.rules_params = p->dump();  // keys sorted: one text, one hash, for equal parameters
+    }
     r.finish();
     check_ranges(c);
     return c;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "server/config/config_json.hpp"
+#include "server/rules/rules.hpp"
 #include "server/world/presets.hpp"
 
 namespace arena::config {
@@ -67,6 +68,8 @@ result<mode> parse_mode(const json& entry) {
         if (!named) return out::failure("rules: not one of " + rules_names_list());
         m.world.rules = *named;
     }
+    if (const std::string problem = rules::rules_params_problem(m.world); !problem.empty())
+        return out::failure("world: " + problem);
     return out::success(std::move(m));
 }
 

@@ -1,5 +1,6 @@
 #include "server/config/world_choice.hpp"
 
+#include "server/rules/rules.hpp"
 #include "server/world/presets.hpp"
 
 namespace arena::config {
@@ -23,6 +24,11 @@ result<world_choice> choose_world(const std::string& preset, const std::string& 
         const auto named = rules_by_name(rules);
         if (!named) return choice::failure("--rules: unknown rules '" + rules + "' (" + rules_names_list() + ")");
         chosen.config.rules = *named;
+    }
+    // The game checks its parameters once the game is settled (--rules may change it).
+    if (std::string problem = rules::rules_params_problem(chosen.config); !problem.empty()) {
+        if (!config_file.empty()) problem = config_file + ": " + problem;
+        return choice::failure(std::move(problem));
     }
     return choice::success(std::move(chosen));
 }

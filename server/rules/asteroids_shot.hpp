@@ -5,6 +5,7 @@
 // Links only the world: the client core and its WebAssembly build use it too.
 #include <cstdint>
 
+#include "server/rules/asteroids_params.hpp"
 #include "server/world/body.hpp"
 
 namespace arena::rules {
@@ -15,22 +16,6 @@ inline constexpr uint8_t button_fire = 1u << 1;
 inline constexpr uint32_t category_rock = 1u << 0;
 inline constexpr uint32_t category_ship = 1u << 1;
 inline constexpr uint32_t category_bullet = 1u << 2;
-
-struct asteroids_params {
-    world::real bullet_impulse = 2.0f;    // N·s, J
-    world::real bullet_mass = 0.05f;      // kg: 40 m/s from J = 2 N·s
-    world::real bullet_radius = 0.2f;     // m
-    uint32_t fire_cooldown_ticks = 6;     // 0.1 s at 60 Hz
-    uint32_t bullet_lifetime_ticks = 72;  // 1.2 s at 60 Hz
-    uint32_t max_bullets_per_ship = 4;    // live at once
-    uint32_t lives = 3;                   // respawns: the fourth death is the last
-    uint32_t respawn_ticks = 120;         // 2 s at 60 Hz
-    uint32_t invulnerable_ticks = 120;    // 2 s after a respawn
-    world::real split_impulse = 20.0f;    // N·s given to each piece, across the rock's velocity
-    world::real wave_rock_radius = 5.0f;  // m, a new wave's large rocks
-    world::real spawn_clearance = 15.0f;  // m kept free around a respawn or a wave's rock
-    uint32_t score_large = 20, score_medium = 50, score_small = 100, score_ship = 200;
-};
 
 // May a ship fire at tick `now`, its cooldown ending at tick `next_fire`, with `live` of its
 // bullets in the world? The client asks with input sequences for ticks (one input a tick).

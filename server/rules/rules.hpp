@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "server/world/hash.hpp"
@@ -89,8 +90,13 @@ public:
     virtual uint32_t winner() const { return 0; }
 };
 
-// The rules `config.rules` names, set up on `w` (a new world built from `config`).
+// The rules `config.rules` names, set up on `w` (a new world built from `config`). Throws
+// std::invalid_argument when the config's rules_params are not the game's (rules_params_problem).
 std::unique_ptr<rules> make_rules(world::world& w);
+
+// Why `config`'s rules_params do not suit its game ("" when they do): the game checks its own,
+// and rules that take none refuse any but "{}".
+std::string rules_params_problem(const world::world_config& config);
 
 // The hash recordings and replays compare: the world's, followed by the rules' state when
 // they have any (so sandbox worlds keep the hashes they always had).

@@ -2,6 +2,7 @@
 // Everything that decides a world besides its seed and its inputs. Every field has a default
 // and a unit; presets (presets.hpp) and config files (server/config/) start from these.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "server/world/types.hpp"
@@ -115,6 +116,9 @@ struct world_config {
     rock_config rocks{};
     std::vector<body_config> bodies{};            // placed in order when the world is created
     enum game_rules rules = game_rules::sandbox;  // the world ignores it; the match and replay read it
+    // The game's own parameters ("rules_params" in the JSON): an object's text with its keys
+    // sorted, "" when absent. The world ignores it; the rules check it and play by it.
+    std::string rules_params{};
 };
 
 }  // namespace arena::world

@@ -74,6 +74,12 @@ uint64_t config_hash(const world_config& c) {
         h.add_u8(0x52);
         h.add_u8(static_cast<uint8_t>(c.rules));
     }
+    // Only configs with the game's parameters: configs from before them keep their hashes.
+    if (!c.rules_params.empty()) {
+        h.add_u8(0x54);
+        h.add_u32(static_cast<uint32_t>(c.rules_params.size()));
+        for (const char ch : c.rules_params) h.add_u8(static_cast<uint8_t>(ch));
+    }
     // Only sub-stepped configs: configs from before sub-steps existed keep their hashes.
     if (c.substeps != 1) {
         h.add_u8(0x53);

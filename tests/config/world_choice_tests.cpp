@@ -60,3 +60,14 @@ TEST_CASE("an unknown preset or rules name is one line naming the flag", "[confi
     CHECK(error_of("asteroids", "", "chess") == "--rules: unknown rules 'chess' (sandbox, asteroids)");
     CHECK(error_of("asteroids", "no/such/file.json", "").find("no/such/file.json: cannot open") == 0);
 }
+
+TEST_CASE("a config's game parameters are checked once --rules has settled the game", "[config][params]") {
+    const std::string file = "world_choice_tests_params.json";
+    std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "rules_params": {"lives": 1}})";
+    CHECK(chosen("asteroids", file, "").config.rules_params == R"({"lives":1})");
+    // The same parameters under the sandbox rules, which take none.
+    CHECK(error_of("asteroids", file, "sandbox") == file + ": rules_params: the sandbox rules take no parameters");
+    std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "rules_params": {"lives": 1001}})";
+    CHECK(error_of("asteroids", file, "") == file + ": rules_params.lives must be a whole number in [0, 1000]");
+    std::remove(file.c_str());
+}

@@ -14,6 +14,7 @@
 #include "protocol/decode.hpp"
 #include "protocol/game.hpp"
 #include "protocol/version.hpp"
+#include "server/config/config_json.hpp"
 #include "server_process.hpp"
 
 using namespace arena;
@@ -102,6 +103,36 @@ TEST_CASE("arena-server --rules names the game the match plays, and an unknown n
     CHECK(game.players[0].lives == 3);
     CHECK(game.names == std::vector<std::string>{"ada"});
     CHECK(server.stop(SIGTERM) == 0);
+}
+
+TEST_CASE("a config's rules_params reach the match and the Welcome, and bad ones stop the server in one line",
+          "[net][cli][params]") {
+    const std::string file = temp_path("params.json");
+    std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "rules_params": {"lives": 7}})";
+    server_process server({"--config", file});
+    test_client client(server.port());
+    client.send_frame(protocol::encode_hello(protocol::protocol_version, "ada", ""));
+    const auto welcome_frame = client.read_until(Payload::Welcome);
+    REQUIRE(welcome_frame);
+    const auto welcome = protocol::decode_welcome(*message_of(*welcome_frame));
+    REQUIRE(welcome);
+    const auto sent = config::parse_config_json(welcome.value.world_config);
+    REQUIRE(sent);
+    CHECK(sent.value.rules_params == R"({"lives":7})");
+    const auto frame = client.read_until(Payload::Snapshot);
+    REQUIRE(frame);
+    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+    REQUIRE(snapshot);
+    protocol::game_list game;
+    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    REQUIRE(game.players.size() == 1);
+    CHECK(game.players[0].lives == 7);
+    CHECK(server.stop(SIGTERM) == 0);
+
+    std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "rules_params": {"lifes": 7}})";
+    const auto r = server_run("--config " + file + " --duration 0.2");
+    CHECK(r.exit_code == 2);
+    CHECK(r.output == "arena-server: " + file + ": unknown field rules_params.lifes\n");
 }
 
 TEST_CASE("arena-server --preset asteroids plays the asteroids rules without --rules", "[net][cli]") {

@@ -82,6 +82,24 @@ TEST_CASE("a header whose config asks for 30 million rocks is refused before any
                           "30000000\n");
 }
 
+TEST_CASE("a header whose game parameters the game refuses is refused before any work", "[replay][cost]") {
+    temp_file file("bad-params");
+    header h = asteroids_header();
+    const size_t end = h.world_config.rfind('}');
+    REQUIRE(end != std::string::npos);
+    h.world_config.replace(end, 1, R"(, "rules": "asteroids", "rules_params": {"lives": 5000}})");
+    record_encoder encoder;
+    std::vector<uint8_t> bytes;
+    encoder.append(h, bytes);
+    encoder.append(end_marker{0, h.start_hash}, bytes);
+    write_bytes(file.path(), bytes);
+    const auto r = run_replay(file.path(), 20);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output == "arena-replay: " + file.path() +
+                          ": byte offset 0: Header: world config: rules_params.lives must be a whole number in [0, "
+                          "1000]\n");
+}
+
 TEST_CASE("a header with a rate no server runs at is refused", "[replay][cost]") {
     temp_file file("rates");
     record_encoder encoder;
