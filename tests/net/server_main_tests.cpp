@@ -29,6 +29,17 @@ command_result server_run(const std::string& args) {
     return run_command("timeout 20 " + program("arena-server") + " --port 0 " + args + " 2>&1");
 }
 
+// The game's part of the next snapshot `client` reads: the scoreboard lines, names, events.
+protocol::game_list next_game(test_client& client) {
+    const auto frame = client.read_until(Payload::Snapshot);
+    REQUIRE(frame);
+    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
+    REQUIRE(snapshot);
+    protocol::game_list game;
+    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    return game;
+}
+
 }  // namespace
 
 TEST_CASE("arena-server refuses numeric flags that would overflow, naming the flag", "[net][cli]") {
@@ -93,12 +104,7 @@ TEST_CASE("arena-server --rules names the game the match plays, and an unknown n
     test_client client(server.port());
     client.send_frame(protocol::encode_hello(protocol::protocol_version, "ada", ""));
     REQUIRE(client.read_until(Payload::Welcome));
-    const auto frame = client.read_until(Payload::Snapshot);
-    REQUIRE(frame);
-    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
-    REQUIRE(snapshot);
-    protocol::game_list game;
-    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    const protocol::game_list game = next_game(client);
     REQUIRE(game.players.size() == 1);
     CHECK(game.players[0].lives == 3);
     CHECK(game.names == std::vector<std::string>{"ada"});
@@ -119,12 +125,7 @@ TEST_CASE("a config's rules_params reach the match and the Welcome, and bad ones
     const auto sent = config::parse_config_json(welcome.value.world_config);
     REQUIRE(sent);
     CHECK(sent.value.rules_params == R"({"lives":7})");
-    const auto frame = client.read_until(Payload::Snapshot);
-    REQUIRE(frame);
-    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
-    REQUIRE(snapshot);
-    protocol::game_list game;
-    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    const protocol::game_list game = next_game(client);
     REQUIRE(game.players.size() == 1);
     CHECK(game.players[0].lives == 7);
     CHECK(server.stop(SIGTERM) == 0);
@@ -141,12 +142,7 @@ TEST_CASE("arena-server --preset asteroids plays the asteroids rules without --r
     test_client client(server.port());
     client.send_frame(protocol::encode_hello(protocol::protocol_version, "ada", ""));
     REQUIRE(client.read_until(Payload::Welcome));
-    const auto frame = client.read_until(Payload::Snapshot);
-    REQUIRE(frame);
-    const auto snapshot = protocol::decode_snapshot(*message_of(*frame));
-    REQUIRE(snapshot);
-    protocol::game_list game;
-    REQUIRE(protocol::read_game(*snapshot.value.table, game).empty());
+    const protocol::game_list game = next_game(client);
     REQUIRE(game.players.size() == 1);
     CHECK(game.players[0].lives == 3);
     CHECK(server.stop(SIGTERM) == 0);

@@ -30,6 +30,16 @@ arena::test::command_result run_replay(const std::string& path, int seconds) {
                                     " " + path + " 2>&1 >/dev/null");
 }
 
+// A recording of `h` and its end, nothing between, written to `path` and replayed.
+arena::test::command_result replay_header_alone(const std::string& path, const header& h) {
+    record_encoder encoder;
+    std::vector<uint8_t> bytes;
+    encoder.append(h, bytes);
+    encoder.append(end_marker{0, h.start_hash}, bytes);
+    write_bytes(path, bytes);
+    return run_replay(path, 20);
+}
+
 }  // namespace
 
 TEST_CASE("a start_tick far past a server's first tick is refused before any step", "[replay][cost]") {
@@ -70,12 +80,7 @@ TEST_CASE("a header whose config asks for 30 million rocks is refused before any
     const size_t at = h.world_config.find(count);
     REQUIRE(at != std::string::npos);
     h.world_config.replace(at, count.size(), "\"count\": 30000000");
-    record_encoder encoder;
-    std::vector<uint8_t> bytes;
-    encoder.append(h, bytes);
-    encoder.append(end_marker{0, h.start_hash}, bytes);
-    write_bytes(file.path(), bytes);
-    const auto r = run_replay(file.path(), 20);
+    const auto r = replay_header_alone(file.path(), h);
     CHECK(r.exit_code == 2);
     CHECK(r.output == "arena-replay: " + file.path() +
                           ": byte offset 0: Header: world config: field 'rocks.count' must be at most 1048576, got "
@@ -88,12 +93,7 @@ TEST_CASE("a header whose game parameters the game refuses is refused before any
     const size_t end = h.world_config.rfind('}');
     REQUIRE(end != std::string::npos);
     h.world_config.replace(end, 1, R"(, "rules": "asteroids", "rules_params": {"lives": 5000}})");
-    record_encoder encoder;
-    std::vector<uint8_t> bytes;
-    encoder.append(h, bytes);
-    encoder.append(end_marker{0, h.start_hash}, bytes);
-    write_bytes(file.path(), bytes);
-    const auto r = run_replay(file.path(), 20);
+    const auto r = replay_header_alone(file.path(), h);
     CHECK(r.exit_code == 2);
     CHECK(r.output == "arena-replay: " + file.path() +
                           ": byte offset 0: Header: world config: rules_params.lives must be a whole number in [0, "
