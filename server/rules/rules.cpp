@@ -6,15 +6,27 @@
 
 namespace arena::rules {
 
+namespace {
+
+std::string sandbox_params_problem(const world::world_config& config) {
+    if (config.rules_params.empty() || config.rules_params == "{}") return "";
+    return "rules_params: the sandbox rules take no parameters";
+}
+
+}  // namespace
+
 std::unique_ptr<rules> make_rules(world::world& w) {
-    if (const std::string problem = rules_params_problem(w.config()); !problem.empty())
-        throw std::invalid_argument(problem);
     switch (w.config().rules) {
-        case world::game_rules::asteroids:
-            return std::make_unique<asteroids_rules>(w, parse_asteroids_params(w.config().rules_params).value);
+        case world::game_rules::asteroids: {
+            auto params = parse_asteroids_params(w.config().rules_params);
+            if (!params) throw std::invalid_argument(params.error);
+            return std::make_unique<asteroids_rules>(w, params.value);
+        }
         case world::game_rules::sandbox:
             break;
     }
+    if (const std::string problem = sandbox_params_problem(w.config()); !problem.empty())
+        throw std::invalid_argument(problem);
     return std::make_unique<rules>();
 }
 
@@ -25,8 +37,7 @@ std::string rules_params_problem(const world::world_config& config) {
         case world::game_rules::sandbox:
             break;
     }
-    if (config.rules_params.empty() || config.rules_params == "{}") return "";
-    return "rules_params: the sandbox rules take no parameters";
+    return sandbox_params_problem(config);
 }
 
 uint64_t state_hash(const world::world& w, const rules& r) {

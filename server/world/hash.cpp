@@ -78,7 +78,7 @@ uint64_t config_hash(const world_config& c) {
     if (!c.rules_params.empty()) {
         h.add_u8(0x54);
         h.add_u32(static_cast<uint32_t>(c.rules_params.size()));
-        for (const char ch : c.rules_params) h.add_u8(static_cast<uint8_t>(ch));
+        h.add_bytes(c.rules_params);
     }
     // Only sub-stepped configs: configs from before sub-steps existed keep their hashes.
     if (c.substeps != 1) {
