@@ -86,7 +86,7 @@ timed-build: deps $(BUILD)/build.ninja
 FUZZ_BUILD ?= build-fuzz
 FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta fuzz_replay_cost fuzz_udp_gate
 ifdef CI
-FUZZ_SECONDS ?= 45
+FUZZ_SECONDS ?= 25
 else
 FUZZ_SECONDS ?= 15
 endif
