@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "bench/timing.hpp"
+#include "games/asteroids/asteroids_rules.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/game.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/rng.hpp"
 
@@ -107,7 +107,7 @@ void run(uint32_t players, float view_radius, bool delta, uint32_t ticks, bool g
     config.view_radius = view_radius;
     config.seed = 7;
     world::world_config world_config = world::asteroids_preset();
-    if (game) world_config.rules = world::game_rules::asteroids;
+    if (game) world_config.rules = "asteroids";
     match::match g(config, world_config);
     std::vector<std::unique_ptr<measuring_client>> clients;
     for (uint32_t i = 0; i < players; ++i) {

@@ -29,7 +29,7 @@ float clamp_unit(float v) {
 // A seek waypoint counts as reached within this distance, m.
 constexpr float waypoint_reached = 5.0f;
 
-// The Asteroids rules' fire button (server/rules/asteroids_rules.hpp; bit 0 is the boost).
+// The Asteroids rules' fire button (games/asteroids/asteroids_rules.hpp; bit 0 is the boost).
 constexpr std::uint8_t button_fire = 1u << 1;
 // Their bullets' speed from rest, m/s (J / m_bullet): how far ahead of its prey a hunter aims.
 constexpr float bullet_speed = 40.0f;

@@ -21,7 +21,7 @@ bool same_bits(const world::vec2& a, float x, float y) {
 }  // namespace
 
 own_shots::own_shots(const world::world_config& config, std::uint32_t player_id)
-    : enabled_(config.rules == world::game_rules::asteroids), player_id_(player_id) {
+    : enabled_(config.rules == "asteroids"), player_id_(player_id) {
     // The server's parameters, from the Welcome's world config: it refused any it could not read.
     const auto params = rules::parse_asteroids_params(config.rules_params);
     if (params) {

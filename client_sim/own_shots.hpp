@@ -1,6 +1,6 @@
 #pragma once
 // The player's own shots (Asteroids), predicted as the ship is: when an input with the fire
-// button is stepped, the client decides with the rules' own code (server/rules/asteroids_
+// button is stepped, the client decides with the rules' own code (games/asteroids/asteroids_
 // shot.hpp) whether the ship may fire, spawns the bullet and gives the ship its recoil. Each
 // predicted shot waits for the server's bullet from the same input (protocol ShotOrigin,
 // matched by input sequence) and is then replaced by it: exactly when the two spawns are bit
@@ -22,8 +22,8 @@
 #include <span>
 #include <vector>
 
+#include "games/asteroids/asteroids_shot.hpp"
 #include "protocol/arena_generated.h"
-#include "server/rules/asteroids_shot.hpp"
 #include "server/world/config.hpp"
 #include "server/world/input.hpp"
 

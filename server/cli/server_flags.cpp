@@ -6,6 +6,7 @@
 #include <thread>
 #include <variant>
 
+#include "games/registry.hpp"
 #include "server/cli/server_bounds.hpp"
 #include "server/cli_helpers.hpp"
 #include "server/config/config_json.hpp"
@@ -126,16 +127,18 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
                    "world preset: asteroids (default; plays the asteroids rules) or platformer (a sandbox)");
     app.add_option("--config", config_file, "world config file (JSON); overrides --preset");
     std::string rules_name;
-    app.add_option("--rules", rules_name,
-                   "game rules the match plays by: sandbox (no score) or asteroids (bullets, lives, score); "
-                   "overrides the preset's or the config file's (default: the preset's; a config's \"rules\", else "
-                   "sandbox)");
+    app.add_option(
+        "--rules", rules_name,
+        "game rules the match plays by: " + games::described_list() +
+            "; overrides the preset's or the config file's (default: the preset's; a config's \"rules\", else "
+            "sandbox)");
     app.add_option("--modes", modes_file,
-                   "modes file (JSON): adds modes to the built-in sandbox and asteroids, or overrides them by name "
-                   "(docs/MATCHES.md)");
+                   "modes file (JSON): adds modes to the built-in ones (" + games::names_list() +
+                       "), or overrides them by name (docs/MATCHES.md)");
     auto* mode_flag = app.add_option("--mode", mode_name,
-                                     "the default match's mode (sandbox, asteroids, or one of --modes); excludes "
-                                     "--preset, --config and --rules");
+                                     "the default match's mode (" + games::names_list() +
+                                         ", or one of --modes); excludes "
+                                         "--preset, --config and --rules");
     app.add_option("--max-matches", options.max_matches,
                    "matches at once in this process, the default one included (default: 50 per core, "
                    "each match's memory being small; 1 hosts the default match alone)")

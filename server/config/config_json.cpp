@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "games/registry.hpp"
 #include "server/config/config_names.hpp"
 #include "server/world/body.hpp"
 #include "server/world/presets.hpp"
@@ -111,22 +112,11 @@ private:
 
 }  // namespace
 
-std::optional<world::game_rules> rules_by_name(std::string_view name) {
-    for (const auto& [n, rules] : rules_names)
-        if (name == n) return rules;
-    return std::nullopt;
-}
-
-std::string rules_name(world::game_rules rules) {
-    for (const auto& [n, r] : rules_names)
-        if (r == rules) return n;
-    return "";
-}
-
-std::string rules_names_list() {
-    std::string out;
-    for (const auto& [n, rules] : rules_names) out += (out.empty() ? "" : ", ") + std::string(n);
-    return out;
+bool is_game_name(std::string_view name) {
+    if (name.empty() || name.size() > max_game_name || name[0] < 'a' || name[0] > 'z') return false;
+    for (const char ch : name)
+        if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_')) return false;
+    return true;
 }
 
 namespace {
@@ -354,8 +344,10 @@ world::world_config read_world(const json& j) {
     world::world_config c;
     if (const json* preset = r.take("preset")) {
         if (!preset->is_string()) throw bad_field{"field 'preset' must be a string"};
-        auto p = world::preset_by_name(preset->get<std::string>());
-        if (!p) throw bad_field{"field 'preset': unknown preset '" + preset->get<std::string>() + "'"};
+        auto p = games::scene_by_name(preset->get<std::string>());
+        if (!p)
+            throw bad_field{"field 'preset': unknown preset '" + preset->get<std::string>() + "' (" +
+                            games::scene_names_list() + ")"};
         c = *p;
     }
     r.read("dt", c.dt);
@@ -380,7 +372,14 @@ world::world_config read_world(const json& j) {
     if (const json* m = r.take("control")) read_control(*m, "control", c.control);
     if (const json* m = r.take("rocks")) read_rocks(*m, "rocks", c.rocks);
     if (const json* b = r.take("bodies")) read_bodies(*b, "bodies", c.bodies);
-    r.read_enum("rules", c.rules, rules_names);
+    // Any well-formed name: whether this build has the game is the registry's to say
+    // (games/registry.hpp), so that a client built before a game still reads its worlds.
+    if (const json* g = r.take("rules")) {
+        if (!g->is_string() || !is_game_name(g->get<std::string>()))
+            throw bad_field{r.where("rules") + " must be a game's name: a lower case letter, then up to " +
+                            std::to_string(max_game_name - 1) + " lower case letters, digits or _"};
+        c.rules = g->get<std::string>();
+    }
     if (const json* p = r.take("rules_params")) {
         if (!p->is_object()) throw bad_field{r.where("rules_params") + " must be an object"};
         c.rules_params = p->dump();  // keys sorted: one text, one hash, for equal parameters

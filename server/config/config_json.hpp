@@ -35,12 +35,11 @@ result<world::world_config> parse_config_json(std::string_view text);
 // Reads and parses a file; errors name the file.
 result<world::world_config> load_config_file(const std::string& path);
 
-// The game rules a config's "rules" names ("sandbox", "asteroids"), or none for another name.
-std::optional<world::game_rules> rules_by_name(std::string_view name);
-// The name of `rules` in a config ("sandbox", "asteroids").
-std::string rules_name(world::game_rules rules);
-// Those names, for a message: "sandbox, asteroids".
-std::string rules_names_list();
+// A config's "rules" is a game's name: a lower case letter, then up to 31 lower case letters,
+// digits or '_' (the names cmake/games.cmake accepts). Which names this build plays is the
+// registry's to say (games/registry.hpp).
+inline constexpr size_t max_game_name = 32;
+bool is_game_name(std::string_view name);
 
 // Every field, so that parse_config_json(config_to_json(c)) == c bit for bit.
 std::string config_to_json(const world::world_config& config);

@@ -13,8 +13,6 @@ inline constexpr std::pair<const char*, world::boundary> boundary_names[] = {{"o
                                                                              {"wrap", world::boundary::wrap},
                                                                              {"walls", world::boundary::walls},
                                                                              {"floor", world::boundary::floor}};
-inline constexpr std::pair<const char*, world::game_rules> rules_names[] = {
-    {"sandbox", world::game_rules::sandbox}, {"asteroids", world::game_rules::asteroids}};
 inline constexpr std::pair<const char*, world::shape_type> shape_names[] = {
     {"circle", world::shape_type::circle},   {"capsule", world::shape_type::capsule},
     {"box", world::shape_type::box},         {"polygon", world::shape_type::polygon},

@@ -100,7 +100,7 @@ std::string config_to_json(const world::world_config& c) {
     };
     // Only rules other than the sandbox's: the JSON of a sandbox world (and its hash in
     // Welcome and in recordings) stays what it was before rules existed.
-    if (c.rules != world::game_rules::sandbox) j["rules"] = enum_name(c.rules, rules_names);
+    if (c.rules != "sandbox") j["rules"] = c.rules;
     if (!c.rules_params.empty()) j["rules_params"] = nlohmann::json::parse(c.rules_params);
     // Only sub-stepped worlds name their sub-steps, for the same reason.
     if (c.substeps != 1) j["substeps"] = c.substeps;

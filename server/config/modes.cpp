@@ -5,9 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "games/registry.hpp"
 #include "server/config/config_json.hpp"
-#include "server/rules/rules.hpp"
-#include "server/world/presets.hpp"
 
 namespace arena::config {
 
@@ -18,8 +17,8 @@ namespace {
 mode preset_mode(std::string name, const std::string& preset) {
     mode m;
     m.name = std::move(name);
-    m.world = *world::preset_by_name(preset);
-    m.world.rules = *world::preset_rules(preset);
+    m.world = *games::scene_by_name(preset);
+    m.world.rules = games::game_for_scene(preset);
     m.preset = preset;
     return m;
 }
@@ -50,8 +49,8 @@ result<mode> parse_mode(const json& entry) {
     }
     if (!valid_mode_name(m.name))
         return out::failure("name: 1 to 32 of a-z, 0-9, '_' and '-' (got '" + m.name.substr(0, 40) + "')");
-    if (!m.preset.empty() && !world::preset_by_name(m.preset))
-        return out::failure("preset: unknown preset '" + m.preset + "'");
+    if (!m.preset.empty() && !games::scene_by_name(m.preset))
+        return out::failure("preset: unknown preset '" + m.preset + "' (" + games::scene_names_list() + ")");
     if (!entry.contains("world") && m.preset.empty()) return out::failure("needs a preset or a world");
     json world_json = entry.contains("world") ? entry["world"] : json::object();
     if (!world_json.is_object()) return out::failure("world: not an object");
@@ -61,14 +60,14 @@ result<mode> parse_mode(const json& entry) {
     if (!world) return out::failure("world: " + world.error);
     m.world = std::move(world.value);
     // A preset plays its own game unless the world or "rules" says otherwise.
-    if (!m.preset.empty() && !world_names_rules) m.world.rules = *world::preset_rules(m.preset);
+    if (!m.preset.empty() && !world_names_rules) m.world.rules = games::game_for_scene(m.preset);
     if (entry.contains("rules")) {
         const json& rules = entry["rules"];
-        const auto named = rules.is_string() ? rules_by_name(rules.get<std::string>()) : std::nullopt;
-        if (!named) return out::failure("rules: not one of " + rules_names_list());
-        m.world.rules = *named;
+        if (!rules.is_string() || games::find(rules.get<std::string>()) == nullptr)
+            return out::failure("rules: not one of " + games::names_list());
+        m.world.rules = rules.get<std::string>();
     }
-    if (const std::string problem = rules::rules_params_problem(m.world); !problem.empty())
+    if (const std::string problem = games::config_problem(m.world); !problem.empty())
         return out::failure("world: " + problem);
     return out::success(std::move(m));
 }
@@ -83,7 +82,12 @@ bool valid_mode_name(std::string_view name) {
 }
 
 std::vector<mode> builtin_modes() {
-    return {preset_mode("sandbox", "platformer"), preset_mode("asteroids", "asteroids")};
+    // The sandbox on the platformer, then each game made for a scene, named as the game.
+    std::vector<mode> modes{preset_mode("sandbox", "platformer")};
+    for (const rules::game_definition* game : games::all()) {
+        if (!game->scene.empty()) modes.push_back(preset_mode(std::string(game->name), std::string(game->scene)));
+    }
+    return modes;
 }
 
 result<std::vector<mode>> parse_modes_json(std::string_view text) {

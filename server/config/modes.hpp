@@ -2,7 +2,7 @@
 // Modes: what a match plays. A mode names a world (a preset or a config), its game rules, a
 // player capacity and an optional duration; a client asks for one by name (Hello.mode, the
 // lobby's POST /matches) and the server joins it to a match of that mode or creates one.
-// Built in: sandbox and asteroids. --modes FILE adds modes or overrides them by name.
+// Built in: sandbox, and one per game made for a scene. --modes FILE adds modes or overrides them by name.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -29,8 +29,8 @@ struct mode {
 // Whether `name` may name a mode: 1 to max_mode_name_bytes of [a-z0-9_-].
 bool valid_mode_name(std::string_view name);
 
-// The modes every server plays: "sandbox" (the platformer preset, sandbox rules) and
-// "asteroids" (its preset and rules).
+// The modes every server plays: "sandbox" (the platformer preset, sandbox rules), then one for
+// each registered game made for a preset, named as the game ("asteroids": its preset and rules).
 std::vector<mode> builtin_modes();
 
 // A --modes file's text: {"modes": [{"name": "duel", "preset": "asteroids", "rules": "asteroids",

@@ -15,6 +15,7 @@ std::string scoreboard_json(std::span<const rules::score_line> lines, std::span<
                          {"deaths", s.deaths},
                          {"shots", s.shots},
                          {"hits", s.hits}});
+        if (s.team != 0) board.back()["team"] = s.team;  // a team game's only
     }
     return board.dump();
 }

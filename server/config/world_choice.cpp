@@ -1,7 +1,6 @@
 #include "server/config/world_choice.hpp"
 
-#include "server/rules/rules.hpp"
-#include "server/world/presets.hpp"
+#include "games/registry.hpp"
 
 namespace arena::config {
 
@@ -13,20 +12,22 @@ result<world_choice> choose_world(const std::string& preset, const std::string& 
         if (!loaded) return choice::failure(std::move(loaded.error));
         chosen.config = std::move(loaded.value);
     } else {
-        auto world = world::preset_by_name(preset);
-        if (!world) return choice::failure("--preset: unknown preset '" + preset + "' (asteroids, platformer)");
+        auto world = games::scene_by_name(preset);
+        if (!world)
+            return choice::failure("--preset: unknown preset '" + preset + "' (" + games::scene_names_list() + ")");
         chosen.config = std::move(*world);
-        // `--preset asteroids` used to play the sandbox's rules: rocks, but no bullets or score.
-        chosen.config.rules = *world::preset_rules(preset);
+        // A preset plays the game made for it (`--preset asteroids` used to play the sandbox's
+        // rules: rocks, but no bullets or score).
+        chosen.config.rules = games::game_for_scene(preset);
         chosen.preset = preset;
     }
     if (!rules.empty()) {
-        const auto named = rules_by_name(rules);
-        if (!named) return choice::failure("--rules: unknown rules '" + rules + "' (" + rules_names_list() + ")");
-        chosen.config.rules = *named;
+        if (games::find(rules) == nullptr)
+            return choice::failure("--rules: unknown rules '" + rules + "' (" + games::names_list() + ")");
+        chosen.config.rules = rules;
     }
     // The game checks its parameters once the game is settled (--rules may change it).
-    if (std::string problem = rules::rules_params_problem(chosen.config); !problem.empty()) {
+    if (std::string problem = games::config_problem(chosen.config); !problem.empty()) {
         if (!config_file.empty()) problem = config_file + ": " + problem;
         return choice::failure(std::move(problem));
     }

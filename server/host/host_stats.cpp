@@ -73,6 +73,14 @@ void process_host::write_stats_json(const std::string& path) const {
     j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
     // The player the rules declare the winner, as every client's last Bye says (0: nobody).
     j["winner"] = matches_.default_match().game_rules().winner();
+    // A team game's teams and scores, and the team winning (0: a draw).
+    if (const std::vector<rules::team_line> teams = matches_.default_match().game_rules().teams(); !teams.empty()) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const rules::team_line& t : teams)
+            list.push_back({{"team", t.team}, {"name", t.name}, {"score", t.score}});
+        j["teams"] = std::move(list);
+        j["winning_team"] = matches_.default_match().game_rules().winning_team();
+    }
     stats_json_sink figures(j);
     report(matches_.default_match().counters(), figures);
     report(p, figures);

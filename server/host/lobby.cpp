@@ -51,7 +51,7 @@ lobby_answer list_modes(const match_registry& matches) {
         list.push_back({{"name", m.name},
                         {"capacity", m.max_players != 0 ? m.max_players : matches.options().base.admission.max_players},
                         {"preset", m.preset},
-                        {"rules", config::rules_name(m.world.rules)},
+                        {"rules", m.world.rules},
                         {"duration", m.duration_s}});
     }
     return {200, list.dump() + "\n"};

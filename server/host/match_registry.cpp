@@ -284,7 +284,9 @@ void match_registry::observe(std::function<void(hosted_match&)> started,
 }
 
 std::string match_registry::default_match_over() const {
-    if (default_->game->over()) return "match over (--score-limit reached)";
+    if (default_->game->over())
+        return default_->game->game_rules().finished() ? "match over (its rules ended it)"
+                                                       : "match over (--score-limit reached)";
     if (default_->end_tick != 0 && default_->game->state().tick() >= default_->end_tick)
         return "match over (its mode's duration reached)";
     return "";

@@ -5,6 +5,7 @@
 // client (protocol/README.md, "Shapes"), so set it before the body's first snapshot: a later
 // change reaches only clients that see the body afterwards for the first time.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -41,6 +42,11 @@ public:
     }
     [[nodiscard]] size_t size() const { return entries_.size(); }
 
+    // How much a body of `kind` matters to a player when a snapshot cannot hold every body in
+    // view, 1 to 4 (rules::snapshot_weight; snapshot_priority.hpp); 2 until set.
+    void set_weight(uint8_t kind, uint8_t weight) { weights_[kind] = weight; }
+    [[nodiscard]] uint8_t weight_of(uint32_t body_id) const { return weights_[of(body_id)]; }
+
 private:
     using entry = std::pair<uint32_t, uint8_t>;
     std::vector<entry>::iterator lower(uint32_t id) {
@@ -48,6 +54,13 @@ private:
                                 [](const entry& e, uint32_t v) { return e.first < v; });
     }
     std::vector<entry> entries_;  // by increasing body id; kind 0 is not stored
+    std::array<uint8_t, 256> weights_ = filled(2);
+
+    static constexpr std::array<uint8_t, 256> filled(uint8_t weight) {
+        std::array<uint8_t, 256> a{};
+        a.fill(weight);
+        return a;
+    }
 };
 
 }  // namespace arena::match

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "games/registry.hpp"
 #include "protocol/config_hash.hpp"
 #include "protocol/version.hpp"
 #include "server/config/config_json.hpp"
@@ -28,7 +29,7 @@ match::match(const match_config& config, const world::world_config& world_config
       log_(std::move(log)),
       admission_(config.admission, config.tick_rate, std::move(check_token)),
       world_(world_config, config.seed),
-      rules_(rules::make_rules(world_)),
+      rules_(games::make_rules(world_)),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
       fanout_({config.view_radius, baseline_ring(), config.tick_rate}),
@@ -47,6 +48,8 @@ match::match(const match_config& config, const world::world_config& world_config
         throw std::invalid_argument("the world's configuration and static geometry make a Welcome of " +
                                     std::to_string(welcome_bytes) + " bytes, above the " +
                                     std::to_string(protocol::max_server_frame_body) + " a client accepts");
+    for (unsigned kind = 0; kind < 256; ++kind)
+        kinds_.set_weight(static_cast<uint8_t>(kind), rules_->snapshot_weight(static_cast<uint8_t>(kind)));
 }
 
 uint32_t match::snapshot_interval() const {
@@ -239,6 +242,7 @@ void match::tick() {
         game_.update(world_.tick(), board, rules_->events(), names_);
         if (config_.score_limit > 0)
             for (const rules::score_line& line : board) over_ = over_ || line.score >= config_.score_limit;
+        over_ = over_ || rules_->finished();
     }
     // Taken out of the list first: a send may end a connection (a Reject while sending), whose
     // leave erases from pending_welcomes_, or take a player over, which adds to it; walking the

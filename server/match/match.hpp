@@ -113,7 +113,8 @@ public:
     // No new players from now on, and Bye(reason) to every connection; under rules that keep
     // score the Bye carries the result: the winner and the final scoreboard.
     void shut_down(std::string_view reason);
-    // True once a player's score reached match_config::score_limit: the server shuts down.
+    // True once a player's score reached match_config::score_limit or the rules ended the match
+    // (rules::finished: a clock ran out): the server shuts down, or ends this match.
     [[nodiscard]] bool over() const { return over_; }
     // The refusal `hello` would meet from the Hello and capacity rules now (admission's
     // admit_hello, then admit_join or admit_spectator), without joining: how a process with

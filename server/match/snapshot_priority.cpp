@@ -2,40 +2,24 @@
 
 #include <algorithm>
 
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/broadphase.hpp"
 
 namespace arena::match {
 
 namespace {
 
-// Ships matter most (other players), bullets next (fast, short-lived), plain bodies, then
-// rocks (they drift: the client's prediction of a left-out rock stays right longest).
-uint64_t kind_weight(uint8_t kind) {
-    switch (kind) {
-        case rules::kind_ship:
-            return 4;
-        case rules::kind_bullet:
-            return 3;
-        case rules::kind_rock:
-            return 1;
-        default:
-            return 2;
-    }
-}
-
 // Within about this distance a body counts as near (m): its gain is up to four times a far one's.
 constexpr float near_distance = 32.0f;
 
 }  // namespace
 
-uint64_t priority_accumulator::gain(uint8_t kind, float d2) {
+uint64_t priority_accumulator::gain(uint8_t weight, float d2) {
     constexpr float n2 = near_distance * near_distance;
     // 256 far away … 1024 on top of the own body; a float expression without contraction
     // (-ffp-contract=off), so the same on every compiler.
     const float closeness = n2 / (n2 + std::max(d2, 0.0f));
     const auto distance_weight = static_cast<uint64_t>(256.0f + 768.0f * closeness);
-    return kind_weight(kind) * distance_weight;
+    return std::clamp<uint64_t>(weight, 1, 4) * distance_weight;
 }
 
 void priority_accumulator::accumulate(std::span<const world::body> bodies, std::span<const uint32_t> view,
@@ -52,7 +36,7 @@ void priority_accumulator::accumulate(std::span<const world::body> bodies, std::
         entry e{b.id, 0, 0};
         if (k < entries_.size() && entries_[k].id == b.id) e = entries_[k];
         const float d2 = own != nullptr ? world::displacement(own->position, b.position, config).squaredNorm() : 0.0f;
-        e.priority += gain(kinds.of(b.id), d2);
+        e.priority += gain(kinds.weight_of(b.id), d2);
         next_.push_back(e);
     }
     entries_.swap(next_);

@@ -2,12 +2,12 @@
 // Which bodies of a client's view go into a snapshot that cannot hold them all (a bandwidth
 // budget per client: over UDP one snapshot is one datagram, never fragmented). Glenn
 // Fiedler's priority accumulator ("State Synchronization"): every snapshot, each body of the
-// view adds its priority for this snapshot (by kind and by distance from the client's own
-// body) to what it accumulated; the highest go in and start again from 0, so a body left out
-// climbs until it goes in. Priorities are integers and ties go to the lower id: the choice
-// is a pure function of the views, the same on every run.
+// view adds its priority for this snapshot (by its kind's weight, which the game's rules give,
+// and by distance from the client's own body) to what it accumulated; the highest go in and start again from 0, so a
+// body left out climbs until it goes in. Priorities are integers and ties go to the lower id: the choice is a pure
+// function of the views, the same on every run.
 //
-// Gains stay within a factor of 16 of each other (kind 1..4 × distance 1..4), so a far rock
+// Gains stay within a factor of 16 of each other (weight 1..4 × distance 1..4), so a far rock
 // waits at most ~16 times as long as a near ship, never forever.
 #include <cstdint>
 #include <span>
@@ -36,8 +36,9 @@ public:
     [[nodiscard]] uint64_t priority_of(uint32_t id) const;
     [[nodiscard]] uint32_t left_out_of(uint32_t id) const;
 
-    // One snapshot's gain of a body of `kind` at squared distance d2 (m²) from the own body.
-    [[nodiscard]] static uint64_t gain(uint8_t kind, float d2);
+    // One snapshot's gain of a body whose kind weighs `weight` (1 to 4: body_kinds::weight_of)
+    // at squared distance d2 (m²) from the own body.
+    [[nodiscard]] static uint64_t gain(uint8_t weight, float d2);
 
 private:
     struct entry {

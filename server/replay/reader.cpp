@@ -6,9 +6,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "games/registry.hpp"
 #include "server/config/config_json.hpp"
 #include "server/replay/status.hpp"
-#include "server/rules/rules.hpp"
 #include "server/world/little_endian.hpp"
 #include "server/world/version.hpp"
 
@@ -89,8 +89,9 @@ protocol::result<reader> reader::open(const std::string& path) {
                                        " Hz) after the world's start: arena-server records from a match's first tick"));
     auto parsed = config::parse_config_json(h->world_config);
     if (!parsed) return r::failure(rd.at(0, "Header: world config: " + parsed.error));
-    // The game's parameters, as the recording server checked them before it started.
-    if (const std::string problem = rules::rules_params_problem(parsed.value); !problem.empty())
+    // A game this build has, with parameters it accepts, as the recording server checked
+    // before it started.
+    if (const std::string problem = games::config_problem(parsed.value); !problem.empty())
         return r::failure(rd.at(0, "Header: world config: " + problem));
     rd.config_ = std::move(parsed.value);
     if (const std::string changed = world::changed_since(h->world_version, rd.config_); !changed.empty()) {

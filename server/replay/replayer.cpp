@@ -2,10 +2,12 @@
 
 #include <utility>
 
+#include "games/registry.hpp"
+
 namespace arena::replay {
 
 replayer::replayer(reader r, const world::world_config& config, uint64_t seed)
-    : reader_(std::move(r)), world_(config, seed), rules_(rules::make_rules(world_)) {}
+    : reader_(std::move(r)), world_(config, seed), rules_(games::make_rules(world_)) {}
 
 protocol::result<std::unique_ptr<replayer>> replayer::open(const std::string& path) {
     using r = protocol::result<std::unique_ptr<replayer>>;

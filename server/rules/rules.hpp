@@ -5,8 +5,8 @@
 // bit. Rules change the world only through the calls below, between steps; they read no clock
 // and do no I/O (tests/layers checks this folder like the world and the match).
 //
-// A game brings its own rules by deriving from `rules`, naming itself in world_config::rules
-// (the config's JSON "rules"), and adding a case to make_rules().
+// A game brings its own rules by deriving from `rules` in its folder, games/NAME/, and
+// registering itself there (game.hpp; docs/GAMES.md).
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -33,6 +33,15 @@ struct score_line {
     uint32_t lives = 0;
     bool out = false;  // no lives left, or left the match
     player_state state = player_state::playing;
+    uint8_t team = 0;  // the player's team (teams()), 0 in a game without teams
+};
+
+// One team's line: its number (score_line.team), its name and its score.
+struct team_line {
+    uint8_t team = 0;
+    std::string name;
+    uint32_t score = 0;
+    bool operator==(const team_line&) const = default;
 };
 
 // Something that happened in a step, for the players to hear (protocol GameEvent; the
@@ -75,6 +84,10 @@ public:
     // What body `id` is, for drawing (protocol BodyShape.kind: the game defines the values);
     // 0 = a plain body. The match asks once, in the tick the body appears.
     virtual uint8_t kind_of(uint32_t /*body_id*/) const { return 0; }
+    // How much a body of `kind` matters to a player when a snapshot cannot hold every body in
+    // view (server/match/snapshot_priority.hpp): 1 (it moves predictably, as a drifting rock) to
+    // 4 (another player's body). Plain bodies are 2.
+    virtual uint8_t snapshot_weight(uint8_t /*kind*/) const { return 2; }
     // Where body `id` was fired from, when it is a live shot (the match asks in the tick it
     // appears); null for any other body.
     virtual const shot_record* shot_of(uint32_t /*body_id*/) const { return nullptr; }
@@ -86,17 +99,16 @@ public:
     virtual std::vector<score_line> scoreboard() const { return {}; }
     // What happened in the last after_step, in order (derived from the state: not hashed).
     virtual std::span<const game_event> events() const { return {}; }
-    // The player winning now, as this game decides it; 0 = nobody (a tie, or no game).
+    // The player winning now, as this game decides it; 0 = nobody (a tie, a team game, or no game).
     virtual uint32_t winner() const { return 0; }
+    // The teams and their scores, in team order (empty in a game without teams).
+    virtual std::vector<team_line> teams() const { return {}; }
+    // The team winning now; 0 = none (a draw, or no teams).
+    virtual uint8_t winning_team() const { return 0; }
+    // True once the rules have ended the match (a clock ran out): the match says Bye to
+    // everyone with the result, as at --score-limit.
+    virtual bool finished() const { return false; }
 };
-
-// The rules `config.rules` names, set up on `w` (a new world built from `config`). Throws
-// std::invalid_argument when the config's rules_params are not the game's (rules_params_problem).
-std::unique_ptr<rules> make_rules(world::world& w);
-
-// Why `config`'s rules_params do not suit its game ("" when they do): the game checks its own,
-// and rules that take none refuse any but "{}".
-std::string rules_params_problem(const world::world_config& config);
 
 // The hash recordings and replays compare: the world's, followed by the rules' state when
 // they have any (so sandbox worlds keep the hashes they always had).

@@ -84,9 +84,6 @@ struct rock_config {
     uint32_t polygon_vertices = 0;  // 0: circles; 3 to 8: irregular convex polygons within the drawn radius
 };
 
-// The game rules a match plays this world by (server/rules/): sandbox rules keep no score.
-enum class game_rules : uint8_t { sandbox, asteroids };
-
 struct world_config {
     real dt = 1.0f / 60.0f;  // s, the fixed step
     enum integrator integrator = integrator::semi_implicit;
@@ -114,8 +111,10 @@ struct world_config {
     body_material player{};
     control_config control{};
     rock_config rocks{};
-    std::vector<body_config> bodies{};            // placed in order when the world is created
-    enum game_rules rules = game_rules::sandbox;  // the world ignores it; the match and replay read it
+    std::vector<body_config> bodies{};  // placed in order when the world is created
+    // The game a match plays this world by, by name (games/registry.hpp); "sandbox" keeps no
+    // score. The world ignores it; the match and the replay read it.
+    std::string rules = "sandbox";
     // The game's own parameters ("rules_params" in the JSON): an object's text with its keys
     // sorted, "" when absent. The world ignores it; the rules check it and play by it.
     std::string rules_params{};

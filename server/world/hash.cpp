@@ -70,9 +70,10 @@ uint64_t config_hash(const world_config& c) {
         h.add_u8(b.is_static);
     }
     // Only rules other than the sandbox's: configs from before rules existed keep their hashes.
-    if (c.rules != game_rules::sandbox) {
+    if (c.rules != "sandbox") {
         h.add_u8(0x52);
-        h.add_u8(static_cast<uint8_t>(c.rules));
+        h.add_u32(static_cast<uint32_t>(c.rules.size()));
+        h.add_bytes(c.rules);
     }
     // Only configs with the game's parameters: configs from before them keep their hashes.
     if (!c.rules_params.empty()) {

@@ -129,10 +129,4 @@ std::vector<std::string_view> preset_names() {
     return {"asteroids", "platformer", "pyramid"};
 }
 
-std::optional<game_rules> preset_rules(std::string_view name) {
-    if (name == "asteroids") return game_rules::asteroids;
-    if (name == "platformer" || name == "pyramid") return game_rules::sandbox;
-    return std::nullopt;
-}
-
 }  // namespace arena::world

@@ -20,11 +20,9 @@ world_config platformer_preset();
 world_config pyramid_preset(uint32_t base = 20);
 
 // The world of a preset by its name. Its `rules` is the sandbox's, as every preset function's
-// above: tests and benchmarks take the physics alone; preset_rules() says which game it is for.
+// above: tests and benchmarks take the physics alone. A preset is a scene; a game names the
+// scene it is made for (games/registry.hpp).
 std::optional<world_config> preset_by_name(std::string_view name);
 std::vector<std::string_view> preset_names();
-// The game rules a preset is made for: asteroids plays Asteroids (bullets, lives, score), the
-// others are sandboxes. None for an unknown name.
-std::optional<game_rules> preset_rules(std::string_view name);
 
 }  // namespace arena::world

@@ -5,13 +5,13 @@
 #include <vector>
 
 #include "client_sim/session.hpp"
+#include "games/asteroids/asteroids_shot.hpp"
 #include "protocol/config_hash.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/codec.hpp"
 #include "protocol/snapshot.hpp"
 #include "protocol/verify.hpp"
 #include "server/config/config_json.hpp"
-#include "server/rules/asteroids_shot.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
 
@@ -25,7 +25,7 @@ constexpr std::uint32_t first_ship = 7;
 // `asteroids_rules`: played by the Asteroids rules, so that the session predicts own shots.
 protocol::frame_bytes welcome(bool asteroids_rules = false) {
     world::world_config config = *world::preset_by_name("asteroids");
-    if (asteroids_rules) config.rules = world::game_rules::asteroids;
+    if (asteroids_rules) config.rules = "asteroids";
     protocol::welcome_info w;
     w.player_id = own_player;
     w.entity_id = first_ship;

@@ -6,6 +6,7 @@
 #include <string>
 #include <variant>
 
+#include "games/registry.hpp"
 #include "server/config/world_choice.hpp"
 #include "server/world/presets.hpp"
 
@@ -31,33 +32,34 @@ TEST_CASE("the asteroids preset (--preset asteroids) plays the asteroids rules, 
           "[config][preset]") {
     // It played the sandbox: rocks, but no bullets, score or scoreboard.
     const config::world_choice c = chosen("asteroids", "", "");
-    CHECK(c.config.rules == world::game_rules::asteroids);
+    CHECK(c.config.rules == "asteroids");
     CHECK(c.preset == "asteroids");
     CHECK(c.config.rocks.count == world::asteroids_preset().rocks.count);
-    CHECK(chosen("platformer", "", "").config.rules == world::game_rules::sandbox);
-    CHECK(chosen("pyramid", "", "").config.rules == world::game_rules::sandbox);
-    for (const std::string_view name : world::preset_names()) CHECK(world::preset_rules(name).has_value());
+    CHECK(chosen("platformer", "", "").config.rules == "sandbox");
+    CHECK(chosen("pyramid", "", "").config.rules == "sandbox");
+    CHECK(games::game_for_scene("asteroids") == "asteroids");
+    CHECK(games::game_for_scene("no such preset") == "sandbox");
 }
 
 TEST_CASE("the --rules flag overrides the rules of the preset and of a config file", "[config][preset]") {
-    CHECK(chosen("asteroids", "", "sandbox").config.rules == world::game_rules::sandbox);
-    CHECK(chosen("platformer", "", "asteroids").config.rules == world::game_rules::asteroids);
+    CHECK(chosen("asteroids", "", "sandbox").config.rules == "sandbox");
+    CHECK(chosen("platformer", "", "asteroids").config.rules == "asteroids");
     const std::string file = "world_choice_tests_config.json";
     std::ofstream(file) << R"({"preset": "asteroids", "rules": "asteroids", "gravity": [0, -1]})";
     const config::world_choice from_file = chosen("platformer", file, "");
-    CHECK(from_file.config.rules == world::game_rules::asteroids);
+    CHECK(from_file.config.rules == "asteroids");
     CHECK(from_file.config.gravity.y() == -1);
     CHECK(from_file.preset.empty());
-    CHECK(chosen("asteroids", file, "sandbox").config.rules == world::game_rules::sandbox);
+    CHECK(chosen("asteroids", file, "sandbox").config.rules == "sandbox");
     // A config file without "rules" is a sandbox, whatever preset it starts from.
     std::ofstream(file) << R"({"preset": "asteroids"})";
-    CHECK(chosen("asteroids", file, "").config.rules == world::game_rules::sandbox);
+    CHECK(chosen("asteroids", file, "").config.rules == "sandbox");
     std::remove(file.c_str());
 }
 
 TEST_CASE("an unknown preset or rules name is one line naming the flag", "[config][preset]") {
-    CHECK(error_of("tetris", "", "") == "--preset: unknown preset 'tetris' (asteroids, platformer)");
-    CHECK(error_of("asteroids", "", "chess") == "--rules: unknown rules 'chess' (sandbox, asteroids)");
+    CHECK(error_of("tetris", "", "") == "--preset: unknown preset 'tetris' (asteroids, platformer, pyramid, soccer)");
+    CHECK(error_of("asteroids", "", "chess") == "--rules: unknown rules 'chess' (sandbox, asteroids, soccer)");
     CHECK(error_of("asteroids", "no/such/file.json", "").find("no/such/file.json: cannot open") == 0);
 }
 

@@ -8,7 +8,7 @@
 
 #include "client_sim/behavior.hpp"
 #include "client_sim/prediction.hpp"
-#include "server/rules/asteroids_rules.hpp"
+#include "games/asteroids/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
 
@@ -29,7 +29,7 @@ constexpr std::uint32_t player = 2;
 world::world_config asteroids_game() {
     world::world_config c = *world::preset_by_name("asteroids");
     c.rocks.count = 0;
-    c.rules = world::game_rules::asteroids;
+    c.rules = "asteroids";
     return c;
 }
 

@@ -1,4 +1,4 @@
-# Fails when a source file outside tests/ includes a header that its library keeps internal:
+# Fails when a source file outside tests/ (and a game's tests/, games/NAME/tests/) includes a header that its library keeps internal:
 # one in a folder declared with arena_public_headers (cmake/public_headers.cmake) but not among
 # that folder's public headers, from a file outside that folder.
 #   cmake -DROOT=<source dir> -DLIST=<build>/public_headers.txt -P check_public_headers.cmake
@@ -39,7 +39,7 @@ file(GLOB_RECURSE files RELATIVE "${ROOT}" "${ROOT}/*.cpp" "${ROOT}/*.hpp" "${RO
 set(violations "")
 set(checked 0)
 foreach(file IN LISTS files)
-  if(file MATCHES "^(tests|build[^/]*|third_party)/" OR file MATCHES "_generated\\.h$")
+  if(file MATCHES "^(tests|games/[^/]+/tests|build[^/]*|third_party)/" OR file MATCHES "_generated\\.h$")
     continue()
   endif()
   folder_of("${file}" mine)

@@ -312,7 +312,7 @@ TEST_CASE("a snapshot rate that does not divide the tick rate is refused: the We
 TEST_CASE("under game rules the match tags each new body with the rules' kind and keeps score by name",
           "[match][rules]") {
     world::world_config config = world::asteroids_preset();
-    config.rules = world::game_rules::asteroids;
+    config.rules = "asteroids";
     match::match g(make_config(2), config);
     fake_client c;
     const uint32_t player = join(g, c, hello());

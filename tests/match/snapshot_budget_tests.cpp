@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "games/asteroids/asteroids_rules.hpp"
 #include "match/drive.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/delta/quantize.hpp"
@@ -23,7 +24,6 @@
 #include "server/match/match.hpp"
 #include "server/match/snapshot_fanout.hpp"
 #include "server/match/snapshot_priority.hpp"
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/world.hpp"
 
@@ -201,6 +201,8 @@ TEST_CASE("priority: the own body first, then near and important bodies, and a l
     kinds.set(near_rock, rules::kind_rock);
     kinds.set(far_rock, rules::kind_rock);
     kinds.set(far_ship, rules::kind_ship);
+    const rules::asteroids_rules game(w);  // the weights a match takes from its game's rules
+    for (const uint8_t kind : {rules::kind_ship, rules::kind_rock}) kinds.set_weight(kind, game.snapshot_weight(kind));
     std::vector<uint32_t> view;
     for (uint32_t i = 0; i < w.bodies().size(); ++i) view.push_back(i);
 
@@ -209,10 +211,10 @@ TEST_CASE("priority: the own body first, then near and important bodies, and a l
     std::vector<uint32_t> order;
     for (const uint32_t k : p.ranked()) order.push_back(w.bodies()[view[k]].id);
     CHECK(order == std::vector<uint32_t>{own.value(), far_ship, near_rock, far_rock});
-    CHECK(match::priority_accumulator::gain(rules::kind_rock, 0) >
-          match::priority_accumulator::gain(rules::kind_rock, 1e4f));
-    CHECK(match::priority_accumulator::gain(rules::kind_ship, 1e6f) >
-          match::priority_accumulator::gain(rules::kind_rock, 1e6f));
+    CHECK(kinds.weight_of(far_ship) == 4);
+    CHECK(kinds.weight_of(far_rock) == 1);
+    CHECK(match::priority_accumulator::gain(1, 0) > match::priority_accumulator::gain(1, 1e4f));
+    CHECK(match::priority_accumulator::gain(4, 1e6f) > match::priority_accumulator::gain(1, 1e6f));
 
     // Only two go in each time, so the far rock shares one place with bodies whose gains are
     // 4 and 3.5 times its own: it waits about (sum of the three gains) / its gain, 8.5 frames.
@@ -256,7 +258,7 @@ match::match asteroids_match(uint32_t max_players = match::match_config{}.admiss
     config.snapshot_rate = tick_rate / interval;
     config.admission.max_players = max_players;
     world::world_config world = world::asteroids_preset();
-    world.rules = world::game_rules::asteroids;
+    world.rules = "asteroids";
     return match::match(config, world);
 }
 

@@ -95,7 +95,7 @@ void run(match::match& m, std::vector<watcher*> players, std::vector<watcher*> s
 // Asteroids with its rules, so that there is a scoreboard to hear.
 world::world_config asteroids() {
     world::world_config w = world::asteroids_preset();
-    w.rules = world::game_rules::asteroids;
+    w.rules = "asteroids";
     return w;
 }
 

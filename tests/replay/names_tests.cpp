@@ -46,7 +46,7 @@ std::string live_scoreboard(const match::match& m) {
 TEST_CASE("a recorded session of named players replays to the live scoreboard, names included", "[replay][names]") {
     temp_file file("named_session");
     world::world_config world = world::asteroids_preset();
-    world.rules = world::game_rules::asteroids;
+    world.rules = "asteroids";
     match::match_config config;
     match::match m(config, world);
     auto opened =

@@ -47,7 +47,7 @@ match::match_config asteroids_match(float view_radius) {
 }
 world::world_config asteroids_rules_world() {
     world::world_config world = *world::preset_by_name("asteroids");
-    world.rules = world::game_rules::asteroids;
+    world.rules = "asteroids";
     return world;
 }
 

@@ -1,6 +1,6 @@
 // The keyboard as the game's controls: arrows turn and thrust, space fires, shift boosts.
 // Input.buttons bits: 0 the world's impulse (the boost), 1 fire (server/world/input.hpp,
-// server/rules/asteroids_rules.hpp).
+// games/asteroids/asteroids_rules.hpp).
 
 export const BUTTON_BOOST = 1 << 0;
 export const BUTTON_FIRE = 1 << 1;

@@ -39,7 +39,7 @@ export interface Flash {
   colour: string;
 }
 
-// Asteroids' kinds (server/rules/asteroids_rules.hpp).
+// Asteroids' kinds (games/asteroids/asteroids_rules.hpp).
 export const KIND_SHIP = 1;
 export const KIND_ROCK = 2;
 export const KIND_BULLET = 3;

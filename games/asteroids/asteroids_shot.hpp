@@ -5,7 +5,7 @@
 // Links only the world: the client core and its WebAssembly build use it too.
 #include <cstdint>
 
-#include "server/rules/asteroids_params.hpp"
+#include "games/asteroids/asteroids_params.hpp"
 #include "server/world/body.hpp"
 
 namespace arena::rules {

@@ -1,4 +1,4 @@
-#include "server/rules/asteroids_rules.hpp"
+#include "games/asteroids/asteroids_rules.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -314,6 +314,19 @@ uint8_t asteroids_rules::kind_of(uint32_t body_id) const {
     for (const auto& [id, p] : players_)
         if (p.ship == body_id) return kind_ship;
     return 0;
+}
+
+uint8_t asteroids_rules::snapshot_weight(uint8_t kind) const {
+    switch (kind) {
+        case kind_ship:
+            return 4;
+        case kind_bullet:
+            return 3;
+        case kind_rock:
+            return 1;
+        default:
+            return 2;
+    }
 }
 
 uint32_t asteroids_rules::rock_size(uint32_t id) const {

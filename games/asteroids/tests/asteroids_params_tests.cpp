@@ -1,14 +1,15 @@
-// A config's rules_params (server/rules/asteroids_params.hpp): what Asteroids reads from it, what
+// A config's rules_params (games/asteroids/asteroids_params.hpp): what Asteroids reads from it, what
 // it refuses and how, and that the match, the config's JSON and a predicting client all play by
 // the same numbers.
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
 #include "client_sim/own_shots.hpp"
+#include "games/asteroids/asteroids_rules.hpp"
+#include "games/registry.hpp"
 #include "server/config/config_json.hpp"
 #include "server/config/modes.hpp"
 #include "server/config/world_choice.hpp"
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/hash.hpp"
 #include "server/world/presets.hpp"
 
@@ -66,7 +67,7 @@ TEST_CASE("a field of the wrong type, out of range or unknown is refused by name
 
 TEST_CASE("a bullet leaves at the configured J/m_bullet", "[rules][params]") {
     world::world w(asteroids_with(R"({"bullet_impulse": 4, "bullet_mass": 0.1})"), 7);
-    const std::unique_ptr<rules::rules> r = rules::make_rules(w);
+    const std::unique_ptr<rules::rules> r = games::make_rules(w);
     const world::player_id owners[] = {world::player_id{1}};
     const uint32_t ship = w.spawn_players(owners)[0].value();
     r->on_joins(w, std::vector<uint32_t>{1}, std::vector<uint32_t>{ship});
@@ -93,10 +94,10 @@ TEST_CASE("the match refuses parameters its game does not take, wherever they co
     world::world_config bad = asteroids_with("{}");
     bad.rules_params = R"({"lives": 9999})";
     world::world w(bad, 1);
-    CHECK_THROWS_AS(rules::make_rules(w), std::invalid_argument);
+    CHECK_THROWS_AS(games::make_rules(w), std::invalid_argument);
     world::world_config sandbox = world::platformer_preset();
     sandbox.rules_params = R"({"lives": 1})";
-    CHECK(rules::rules_params_problem(sandbox) == "rules_params: the sandbox rules take no parameters");
+    CHECK(games::config_problem(sandbox) == "rules_params: the sandbox rules take no parameters");
     // A --modes file names the mode's entry and the field.
     const auto modes = config::parse_modes_json(
         R"({"modes": [{"name": "duel", "preset": "asteroids", "world": {"rules_params": {"lives": "x"}}}]})");

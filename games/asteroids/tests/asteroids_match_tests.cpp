@@ -6,14 +6,15 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 
+#include "games/asteroids/asteroids_rules.hpp"
+#include "games/registry.hpp"
 #include "server/config/config_json.hpp"
 #include "server/config/scoreboard_json.hpp"
 #include "server/match/tick_record.hpp"
 #include "server/replay/recorder.hpp"
-#include "server/replay/replayer.hpp"
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/trig.hpp"
+#include "tests/common/record_and_replay.hpp"
 
 using namespace arena;
 using world::real;
@@ -24,7 +25,7 @@ namespace {
 // The asteroids preset played by the Asteroids rules.
 world::world_config asteroids_game() {
     world::world_config c = world::asteroids_preset();
-    c.rules = world::game_rules::asteroids;
+    c.rules = "asteroids";
     return c;
 }
 
@@ -40,7 +41,7 @@ struct scripted_result {
 
 scripted_result scripted_match(uint32_t ticks, replay::recorder* rec = nullptr) {
     world::world w(asteroids_game(), 2026);
-    const std::unique_ptr<rules::rules> r = rules::make_rules(w);
+    const std::unique_ptr<rules::rules> r = games::make_rules(w);
     REQUIRE(r->has_state());
     std::vector<uint32_t> ships;
     for (uint32_t t = 0; t < ticks; ++t) {
@@ -91,25 +92,15 @@ TEST_CASE("a scripted asteroids match ends at a golden scoreboard and hash", "[r
 }
 
 TEST_CASE("a recorded asteroids match replays to the same scoreboard and state hash", "[rules][asteroids][replay]") {
-    const std::string path = "/tmp/arena_rules_replay_" + std::to_string(::getpid()) + ".arpl";
     scripted_result live;
-    {
-        // The header's start hash is the world's alone, taken before any tick.
-        const world::world start(asteroids_game(), 2026);
-        auto opened = replay::recorder::open(path, replay::make_header(start, "asteroids", 2026, 60));
-        REQUIRE(opened.ok());
-        live = scripted_match(600, &opened.value);
-    }
-    auto rp = replay::replayer::open(path);
-    REQUIRE(rp.ok());
-    const replay::replay_report report = rp.value->run();
-    std::remove(path.c_str());
+    const testing::replayed_match replayed = testing::record_and_replay(
+        asteroids_game(), 2026, "asteroids", [&](replay::recorder& rec) { live = scripted_match(600, &rec); });
+    const replay::replay_report& report = replayed.report;
     CHECK(report.complete);
     CHECK_FALSE(report.mismatch);
     CHECK(report.final_hash == live.hash);
-    const std::vector<rules::score_line> replayed = rp.value->game_rules().scoreboard();
-    CHECK(config::scoreboard_json(replayed) == config::scoreboard_json(live.board));
+    CHECK(config::scoreboard_json(replayed.scoreboard) == config::scoreboard_json(live.board));
     uint32_t shots = 0;
-    for (const rules::score_line& s : replayed) shots += s.shots;
+    for (const rules::score_line& s : replayed.scoreboard) shots += s.shots;
     CHECK(shots > 0);
 }

@@ -1,12 +1,13 @@
-// Asteroids rules (server/rules/asteroids_rules.hpp): each rule in closed form; the scripted
+// Asteroids rules (games/asteroids/asteroids_rules.hpp): each rule in closed form; the scripted
 // match against a golden scoreboard and hash is in asteroids_match_tests.cpp.
 #include <algorithm>
 #include <catch2/catch.hpp>
 
+#include "games/asteroids/asteroids_rules.hpp"
+#include "games/registry.hpp"
 #include "server/config/config_json.hpp"
 #include "server/config/scoreboard_json.hpp"
 #include "server/match/tick_record.hpp"
-#include "server/rules/asteroids_rules.hpp"
 #include "server/world/presets.hpp"
 #include "server/world/trig.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 // The asteroids preset played by the Asteroids rules.
 world::world_config asteroids_game() {
     world::world_config c = world::asteroids_preset();
-    c.rules = world::game_rules::asteroids;
+    c.rules = "asteroids";
     return c;
 }
 
@@ -318,7 +319,7 @@ TEST_CASE("when every rock is gone a wave of one more large rock spawns away fro
 
 TEST_CASE("sandbox rules keep no state: the state hash is the world's", "[rules]") {
     world::world w(world::platformer_preset(), 3);
-    const std::unique_ptr<rules::rules> r = rules::make_rules(w);
+    const std::unique_ptr<rules::rules> r = games::make_rules(w);
     CHECK_FALSE(r->has_state());
     match::tick_record t;
     t.joins = {world::player_id{1}};
@@ -327,9 +328,9 @@ TEST_CASE("sandbox rules keep no state: the state hash is the world's", "[rules]
     CHECK(r->scoreboard().empty());
     // A config that names the Asteroids rules gets them, and its JSON carries them.
     world::world a(asteroids_game(), 3);
-    CHECK(rules::make_rules(a)->has_state());
+    CHECK(games::make_rules(a)->has_state());
     const auto back = config::parse_config_json(config::config_to_json(asteroids_game()));
-    CHECK(back.value.rules == world::game_rules::asteroids);
+    CHECK(back.value.rules == "asteroids");
     CHECK(config::config_to_json(world::platformer_preset()).find("\"rules\"") == std::string::npos);
 }
 

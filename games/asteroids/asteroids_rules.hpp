@@ -17,7 +17,7 @@
 #include <map>
 #include <vector>
 
-#include "server/rules/asteroids_shot.hpp"
+#include "games/asteroids/asteroids_shot.hpp"
 #include "server/rules/rules.hpp"
 #include "server/world/rng.hpp"
 
@@ -40,6 +40,9 @@ public:
 
     uint32_t body_of(uint32_t player) const override;
     uint8_t kind_of(uint32_t body_id) const override;
+    // Ships matter most (other players), bullets next (fast, short-lived), plain bodies, then
+    // rocks (they drift: a client's prediction of a left-out rock stays right longest).
+    uint8_t snapshot_weight(uint8_t kind) const override;
     bool has_state() const override { return true; }
     void hash(world::fnv1a& h) const override;
     std::vector<score_line> scoreboard() const override;

@@ -1,4 +1,4 @@
-#include "server/rules/asteroids_shot.hpp"
+#include "games/asteroids/asteroids_shot.hpp"
 
 #include "server/world/trig.hpp"
 
