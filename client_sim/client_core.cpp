@@ -154,6 +154,21 @@ void client_core::take_game() {
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
     }
+    // Declared values: only fields the manifest has (a value past them is the server's bug,
+    // and is left out rather than trusted).
+    const protocol::game_manifest& game_manifest = manifest();
+    for (const protocol::game_value& v : game.player_values)
+        if (v.field < game_manifest.player_fields.size()) player_values_[v.owner][v.field] = v.value;
+    for (const protocol::game_value& v : game.team_values)
+        if (v.field < game_manifest.team_fields.size() && v.owner <= 255)
+            team_values_[static_cast<std::uint8_t>(v.owner)][v.field] = v.value;
+    for (const protocol::event_record& r : game.records) {
+        if (r.sequence <= last_record_) continue;  // resent until acknowledged: taken once
+        last_record_ = r.sequence;
+        ++m.game_events;
+        records_.push_back(r);
+        if (records_.size() > max_kept_events) records_.pop_front();
+    }
 }
 
 std::string client_core::player_name(std::uint32_t player) const {
@@ -163,15 +178,41 @@ std::string client_core::player_name(std::uint32_t player) const {
 
 void client_core::record_scoreboard() {
     outcome_.scoreboard.clear();
+    outcome_.game = manifest();
+    const std::size_t fields = outcome_.game.player_fields.size();
+    const std::size_t team_fields = outcome_.game.team_fields.size();
+    auto values_of = [fields](const declared_values& held) {
+        return std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(fields));
+    };
     const protocol::match_result& result = session_.result();
     if (result.over) {
+        // The Bye's own values: the final ones, whatever snapshots were lost before it.
+        std::map<std::uint32_t, declared_values> final_values;
+        for (const protocol::game_value& v : result.player_values)
+            if (v.field < fields) final_values[v.owner][v.field] = v.value;
         for (std::size_t i = 0; i < result.scoreboard.size(); ++i)
-            outcome_.scoreboard.push_back({result.names[i], result.scoreboard[i]});
+            outcome_.scoreboard.push_back(
+                {result.names[i], result.scoreboard[i], values_of(final_values[result.scoreboard[i].player])});
+        for (const protocol::game_value& v : result.team_values) {
+            if (v.field >= team_fields || v.owner > 255) continue;
+            auto& team = outcome_.teams[static_cast<std::uint8_t>(v.owner)];
+            team.resize(team_fields);
+            team[v.field] = v.value;
+        }
         outcome_.final_scoreboard = true;
         outcome_.winner = result.winner;
+        outcome_.winning_team = result.winning_team;
         return;
     }
-    for (const auto& [id, row] : players_) outcome_.scoreboard.push_back({player_name(id), row});
+    for (const auto& [id, row] : players_) {
+        const auto held = player_values_.find(id);
+        outcome_.scoreboard.push_back(
+            {player_name(id), row,
+             held == player_values_.end() ? std::vector<std::int32_t>(fields) : values_of(held->second)});
+    }
+    for (const auto& [team, held] : team_values_)
+        outcome_.teams[team] =
+            std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(team_fields));
 }
 
 void client_core::check_shapes(std::span<const protocol::BodyState> bodies) {

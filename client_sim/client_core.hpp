@@ -121,6 +121,14 @@ public:
     [[nodiscard]] const std::deque<protocol::game_event>& events() const { return events_; }
     [[nodiscard]] const protocol::match_result& result() const { return session_.result(); }
     static constexpr std::size_t max_kept_events = 256;
+    // The game's declared state (protocol/README.md, "Game manifest"): its manifest from the
+    // Welcome, each player's and each team's values as of the newest snapshot applied (in the
+    // manifest's field order), and its events taken, oldest first (the newest max_kept_events).
+    using declared_values = std::array<std::int32_t, protocol::max_game_fields>;
+    [[nodiscard]] const protocol::game_manifest& manifest() const { return session_.welcome().game; }
+    [[nodiscard]] const std::map<std::uint32_t, declared_values>& player_values() const { return player_values_; }
+    [[nodiscard]] const std::map<std::uint8_t, declared_values>& team_values() const { return team_values_; }
+    [[nodiscard]] const std::deque<protocol::event_record>& records() const { return records_; }
     // The last snapshot's ack_sequence (the newest input the server consumed), 0 before one.
     [[nodiscard]] std::uint32_t last_ack() const { return session_.last_ack(); }
     // The tick of the newest snapshot applied (0 before one).
@@ -164,6 +172,10 @@ private:
     std::map<std::uint32_t, protocol::player_row> players_;  // by player id
     std::map<std::uint32_t, std::string> names_;             // by player id
     std::deque<protocol::game_event> events_;
+    std::map<std::uint32_t, declared_values> player_values_;  // by player id
+    std::map<std::uint8_t, declared_values> team_values_;     // by team number
+    std::deque<protocol::event_record> records_;
+    std::uint32_t last_record_ = 0;  // the newest record's sequence taken
 
     // Datagrams: the newest inputs sent, oldest first, repeated in the next Inputs.
     std::array<protocol::earlier_input, protocol::max_earlier_inputs> recent_inputs_{};

@@ -19,6 +19,7 @@ using tally = std::map<std::string, std::uint64_t>;
 struct seen_line {
     std::string name;
     protocol::player_row row;
+    std::vector<std::int32_t> values;  // the game's declared player fields, in its manifest's order
     bool operator==(const seen_line&) const = default;
 };
 
@@ -36,6 +37,11 @@ struct bot_outcome {
     std::vector<seen_line> scoreboard;
     bool final_scoreboard = false;
     std::uint32_t winner = 0;  // the Bye's winner (0: nobody, or no Bye)
+    // What the game declares of itself (the Welcome's manifest), its teams' declared values
+    // (by team number, in the manifest's team_fields order) and the Bye's winning team.
+    protocol::game_manifest game;
+    std::map<std::uint8_t, std::vector<std::int32_t>> teams;
+    std::uint8_t winning_team = 0;
 
     // A well-behaved bot must join, keep its session until the run or the server ends it,
     // and never see a protocol error. Misbehaving bots are expected to be dropped and never

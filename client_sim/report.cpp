@@ -25,7 +25,53 @@ const char* state_name(protocol::PlayerState s) {
     return name != nullptr && *name != '\0' ? name : "?";
 }
 
-nlohmann::json lines_json(const std::vector<seen_line>& lines) {
+// Team k's name in `game` (1 is the first team), or its number.
+std::string team_name(const protocol::game_manifest& game, std::int32_t team) {
+    if (team >= 1 && static_cast<std::size_t>(team) <= game.teams.size()) return game.teams[team - 1].name;
+    return team == 0 ? "-" : std::to_string(team);
+}
+
+// A declared value as a scoreboard shows it: a team by its name, anything else as a number.
+std::string shown(const protocol::game_manifest& game, const protocol::game_field& field, std::int32_t value) {
+    return field.kind == protocol::GameFieldKind::team ? team_name(game, value) : std::to_string(value);
+}
+
+// Whether the protocol's own line (score, kills, deaths, shots, hits, lives) already shows every
+// field the game declares: its table then stays the one scripts have always read.
+bool line_shows_fields(const protocol::game_manifest& game) {
+    for (const protocol::game_field& f : game.player_fields) {
+        const std::string& n = f.name;
+        if (n != "score" && n != "kills" && n != "deaths" && n != "shots" && n != "hits" && n != "lives") return false;
+    }
+    return true;
+}
+
+// The scoreboard by the game's own fields (its manifest), when it declares any.
+void append_declared_scoreboard(std::string& out, const final_report& r) {
+    out += format("  %-20s", "name");
+    for (const protocol::game_field& f : r.game.player_fields) out += format(" %8s", f.label.c_str());
+    out += "\n";
+    for (const seen_line& l : r.scoreboard) {
+        out += format("  %-20s", l.name.c_str());
+        for (std::size_t k = 0; k < r.game.player_fields.size(); ++k)
+            out +=
+                format(" %8s", shown(r.game, r.game.player_fields[k], k < l.values.size() ? l.values[k] : 0).c_str());
+        out += "\n";
+    }
+    if (r.teams.empty()) return;
+    out += "teams:";
+    for (const auto& [team, values] : r.teams) {
+        out += " " + team_name(r.game, team);
+        for (std::size_t k = 0; k < r.game.team_fields.size() && k < values.size(); ++k)
+            out += format(" %s %d", r.game.team_fields[k].label.c_str(), values[k]);
+        out += ";";
+    }
+    out += r.scoreboard_final
+               ? format(" winner: %s\n", r.winning_team ? team_name(r.game, r.winning_team).c_str() : "nobody (a draw)")
+               : "\n";
+}
+
+nlohmann::json lines_json(const std::vector<seen_line>& lines, const protocol::game_manifest& game = {}) {
     nlohmann::json out = nlohmann::json::array();
     for (const seen_line& l : lines) {
         out.push_back({{"player", l.row.player},
@@ -37,6 +83,10 @@ nlohmann::json lines_json(const std::vector<seen_line>& lines) {
                        {"hits", l.row.hits},
                        {"lives", l.row.lives},
                        {"state", state_name(l.row.state)}});
+        // The game's own fields by their names, beside the protocol's (a name they share
+        // holds the same number: Asteroids declares its own score).
+        for (std::size_t k = 0; k < game.player_fields.size() && k < l.values.size(); ++k)
+            if (!out.back().contains(game.player_fields[k].name)) out.back()[game.player_fields[k].name] = l.values[k];
     }
     return out;
 }
@@ -49,10 +99,15 @@ void append_scoreboard(std::string& out, const final_report& r) {
                   r.scoreboard_final ? "final, from the server's Bye" : "the last lines, no Bye with the result",
                   winner == r.scoreboard.end() ? "nobody" : winner->name.c_str(), r.scoreboards_agreeing,
                   r.scoreboards_seen);
-    out += format("  %-20s %8s %6s %6s %6s %6s %9s\n", "name", "score", "kills", "deaths", "shots", "hits", "accuracy");
-    for (const seen_line& l : r.scoreboard) {
-        out += format("  %-20s %8u %6u %6u %6u %6u %7.1f %%\n", l.name.c_str(), l.row.score, l.row.kills, l.row.deaths,
-                      l.row.shots, l.row.hits, accuracy(l.row));
+    if (!line_shows_fields(r.game)) {
+        append_declared_scoreboard(out, r);
+    } else {
+        out += format("  %-20s %8s %6s %6s %6s %6s %9s\n", "name", "score", "kills", "deaths", "shots", "hits",
+                      "accuracy");
+        for (const seen_line& l : r.scoreboard) {
+            out += format("  %-20s %8u %6u %6u %6u %6u %7.1f %%\n", l.name.c_str(), l.row.score, l.row.kills,
+                          l.row.deaths, l.row.shots, l.row.hits, accuracy(l.row));
+        }
     }
     out += format("game: %llu events heard, %llu bytes of lines, names and events\n",
                   static_cast<unsigned long long>(r.game_events), static_cast<unsigned long long>(r.game_bytes));
@@ -100,6 +155,9 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
             r.scoreboard = o.scoreboard;
             r.scoreboard_final = o.final_scoreboard;
             r.winner = o.winner;
+            r.game = o.game;
+            r.teams = o.teams;
+            r.winning_team = o.winning_team;
         }
         if (o.scoreboard == r.scoreboard && o.final_scoreboard == r.scoreboard_final) ++r.scoreboards_agreeing;
         r.scoreboards.push_back(o);
@@ -234,7 +292,7 @@ nlohmann::json to_json(const final_report& r) {
         boards.push_back({{"bot", o.name},
                           {"final", o.final_scoreboard},
                           {"winner", o.winner},
-                          {"lines", lines_json(o.scoreboard)}});
+                          {"lines", lines_json(o.scoreboard, o.game)}});
     }
     return {
         {"seconds", r.seconds},
@@ -243,7 +301,7 @@ nlohmann::json to_json(const final_report& r) {
           {"winner", r.winner},
           {"clients", r.scoreboards_seen},
           {"agreeing", r.scoreboards_agreeing},
-          {"lines", lines_json(r.scoreboard)},
+          {"lines", lines_json(r.scoreboard, r.game)},
           {"game_events", r.game_events},
           {"game_bytes", r.game_bytes}}},
         {"scoreboards", boards},

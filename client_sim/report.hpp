@@ -57,6 +57,9 @@ struct final_report {
     std::vector<seen_line> scoreboard;
     bool scoreboard_final = false;
     std::uint32_t winner = 0;
+    protocol::game_manifest game;                             // the game's own fields, teams...
+    std::map<std::uint8_t, std::vector<std::int32_t>> teams;  // declared team values, by team
+    std::uint8_t winning_team = 0;
     std::uint32_t scoreboards_seen = 0;
     std::uint32_t scoreboards_agreeing = 0;
     std::vector<bot_outcome> scoreboards;

@@ -251,6 +251,10 @@ protocol::Payload session::on_bye(const protocol::Message& message) {
     result_.winner = r.winner;
     result_.scoreboard.swap(r.scoreboard);
     result_.names.swap(r.names);
+    result_.player_values.swap(r.player_values);
+    result_.team_values.swap(r.team_values);
+    result_.winning_team = r.winning_team;
+    result_.winners.swap(r.winners);
     fail("Bye: " + bye.value.reason, end_kind::by_server);
     return protocol::Payload::Bye;
 }

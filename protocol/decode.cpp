@@ -51,6 +51,11 @@ result<welcome_info> decode_welcome(const Message& message) {
     w.view_radius = t->view_radius();
     w.match = to_string(t->match());
     w.mode = to_string(t->mode());
+    if (const auto* game = t->game()) {
+        auto manifest = decode_manifest({game->data(), game->size()});
+        if (!manifest.ok()) return result<welcome_info>::failure("Welcome.game: " + manifest.error);
+        w.game = std::move(manifest.value);
+    }
     // The static geometry: one pose per shape, the same ids, finite poses.
     std::vector<shape_desc> shapes;
     const std::string problem = read_shapes(t->static_shapes(), t->static_vertices(), shapes);
@@ -139,6 +144,12 @@ result<bye_msg> decode_bye(const Message& message) {
         r.scoreboard.push_back(from_wire(*t->scoreboard()->Get(k)));
         r.names.push_back(t->scoreboard_names()->Get(k)->str());
     }
+    if (const auto* values = t->player_values())
+        for (const GameValue* v : *values) r.player_values.push_back(from_wire(*v));
+    if (const auto* values = t->team_values())
+        for (const GameValue* v : *values) r.team_values.push_back(from_wire(*v));
+    r.winning_team = t->winning_team();
+    if (const auto* winners = t->winners()) r.winners.assign(winners->begin(), winners->end());
     return result<bye_msg>::success(std::move(bye));
 }
 

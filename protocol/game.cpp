@@ -20,9 +20,12 @@ game_event from_wire(const GameEvent& e) {
 
 const std::size_t game_list::line_bytes = sizeof(PlayerLine);
 const std::size_t game_list::event_bytes = sizeof(GameEvent);
+const std::size_t game_list::value_bytes = sizeof(GameValue);
+const std::size_t game_list::record_bytes = sizeof(GameEventRecord);
 
 std::size_t game_list::wire_bytes() const {
-    std::size_t bytes = players.size() * line_bytes + events.size() * event_bytes;
+    std::size_t bytes = players.size() * line_bytes + events.size() * event_bytes +
+                        (player_values.size() + team_values.size()) * value_bytes + records.size() * record_bytes;
     for (const std::string& n : names) bytes += name_bytes(n);
     return bytes;
 }
@@ -44,6 +47,12 @@ std::string read_game(const Snapshot& snapshot, game_list& out) {
     }
     if (const auto* events = snapshot.events())
         for (const GameEvent* e : *events) out.events.push_back(from_wire(*e));
+    if (const auto* values = snapshot.player_values())
+        for (const GameValue* v : *values) out.player_values.push_back(from_wire(*v));
+    if (const auto* values = snapshot.team_values())
+        for (const GameValue* v : *values) out.team_values.push_back(from_wire(*v));
+    if (const auto* records = snapshot.game_events())
+        for (const GameEventRecord* e : *records) out.records.push_back(from_wire(*e));
     return {};
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "protocol/arena_generated.h"
+#include "protocol/manifest.hpp"
 
 namespace arena::protocol {
 
@@ -49,18 +50,30 @@ struct game_list {
     std::vector<std::uint32_t> name_ids;  // names[i] is the name of player name_ids[i]
     std::vector<std::string> names;
     std::vector<game_event> events;
+    // The game's declared state (manifest.hpp): values by player and by team, and its events.
+    std::vector<game_value> player_values;
+    std::vector<game_value> team_values;
+    std::vector<event_record> records;
     void clear() {
         players.clear();
         name_ids.clear();
         names.clear();
         events.clear();
+        player_values.clear();
+        team_values.clear();
+        records.clear();
     }
-    [[nodiscard]] bool empty() const { return players.empty() && name_ids.empty() && events.empty(); }
+    [[nodiscard]] bool empty() const {
+        return players.empty() && name_ids.empty() && events.empty() && player_values.empty() && team_values.empty() &&
+               records.empty();
+    }
     // Bytes these add to a message, FlatBuffers framing aside (a name: its id, its length
     // word, its bytes and the terminator), and each item's share of them.
     [[nodiscard]] std::size_t wire_bytes() const;
     static const std::size_t line_bytes;
     static const std::size_t event_bytes;
+    static const std::size_t value_bytes;   // a GameValue
+    static const std::size_t record_bytes;  // a GameEventRecord
     static std::size_t name_bytes(const std::string& name) { return sizeof(std::uint32_t) + 4 + name.size() + 1; }
     bool operator==(const game_list&) const = default;
 };
@@ -71,6 +84,12 @@ struct match_result {
     std::uint32_t winner = 0;  // 0 = nobody
     std::vector<player_row> scoreboard;
     std::vector<std::string> names;  // names[i] is scoreboard[i]'s player's
+    // The game's declared values at the end (manifest.hpp), the winning team (0: none) and the
+    // winning players (a team's, or all tied at the top; empty: nobody).
+    std::vector<game_value> player_values;
+    std::vector<game_value> team_values;
+    std::uint8_t winning_team = 0;
+    std::vector<std::uint32_t> winners;
     bool operator==(const match_result&) const = default;
 };
 

@@ -65,10 +65,17 @@ frame_bytes encode_welcome(const welcome_info& w) {
         shapes = fbb.CreateVectorOfStructs(list.shapes.data(), list.shapes.size());
         vertices = fbb.CreateVectorOfStructs(list.vertices.data(), list.vertices.size());
     }
+    // A buffer of its own, 8-byte aligned inside the Welcome as FlatBuffers wants a nested root.
+    const std::vector<std::uint8_t> manifest = encode_manifest(w.game);
+    flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> game;
+    if (!manifest.empty()) {
+        fbb.ForceVectorAlignment(manifest.size(), sizeof(std::uint8_t), 8);
+        game = fbb.CreateVector(manifest);
+    }
     finish_message(
         fbb, Payload::Welcome,
         CreateWelcome(fbb, w.player_id, w.entity_id, w.tick, w.tick_rate, w.snapshot_rate, preset, config,
-                      w.world_config_hash, w.world_version, w.view_radius, poses, shapes, vertices, match, mode)
+                      w.world_config_hash, w.world_version, w.view_radius, poses, shapes, vertices, match, mode, game)
             .Union());
     return to_frame(fbb);
 }
@@ -126,7 +133,18 @@ frame_bytes encode_bye(std::string_view reason, const match_result* result) {
     for (const player_row& r : result->scoreboard) lines.push_back(to_wire(r));
     const auto board = fbb.CreateVectorOfStructs(lines.data(), lines.size());
     const auto names = fbb.CreateVectorOfStrings(result->names);
-    finish_message(fbb, Payload::Bye, CreateBye(fbb, text, true, result->winner, board, names).Union());
+    auto values = [&fbb](const std::vector<game_value>& list) {
+        std::vector<GameValue> wire;
+        for (const game_value& v : list) wire.push_back(to_wire(v));
+        return wire.empty() ? 0 : fbb.CreateVectorOfStructs(wire.data(), wire.size());
+    };
+    const auto player_values = values(result->player_values);
+    const auto team_values = values(result->team_values);
+    const auto winners = result->winners.empty() ? 0 : fbb.CreateVector(result->winners);
+    finish_message(fbb, Payload::Bye,
+                   CreateBye(fbb, text, true, result->winner, board, names, player_values, team_values,
+                             result->winning_team, winners)
+                       .Union());
     return to_frame(fbb);
 }
 

@@ -10,6 +10,7 @@
 
 #include "protocol/arena_generated.h"
 #include "protocol/game.hpp"
+#include "protocol/manifest.hpp"
 #include "protocol/shapes.hpp"
 
 namespace arena::protocol {
@@ -42,6 +43,7 @@ struct welcome_info {
     std::vector<static_body> statics{};  // every static body, by increasing id (README.md, "Shapes")
     std::string match{};                 // the id of the match joined
     std::string mode{};                  // the mode it plays
+    game_manifest game{};                // what the game declares of itself; empty: nothing
     bool operator==(const welcome_info&) const = default;
 };
 

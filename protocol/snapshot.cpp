@@ -48,7 +48,21 @@ struct game_offsets {
     flatbuffers::Offset<flatbuffers::Vector<std::uint32_t>> name_ids;
     flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> names;
     flatbuffers::Offset<flatbuffers::Vector<const GameEvent*>> events;
+    flatbuffers::Offset<flatbuffers::Vector<const GameValue*>> player_values;
+    flatbuffers::Offset<flatbuffers::Vector<const GameValue*>> team_values;
+    flatbuffers::Offset<flatbuffers::Vector<const GameEventRecord*>> records;
 };
+
+// A vector of `items` as the wire's structs; absent when empty.
+template <class Wire, class Plain>
+flatbuffers::Offset<flatbuffers::Vector<const Wire*>> wire_structs(flatbuffers::FlatBufferBuilder& fbb,
+                                                                   const std::vector<Plain>& items) {
+    if (items.empty()) return 0;
+    std::vector<Wire> wire;
+    wire.reserve(items.size());
+    for (const Plain& item : items) wire.push_back(to_wire(item));
+    return fbb.CreateVectorOfStructs(wire.data(), wire.size());
+}
 game_offsets add_game(flatbuffers::FlatBufferBuilder& fbb, const game_list* game) {
     game_offsets out;
     if (game == nullptr || game->empty()) return out;
@@ -68,6 +82,9 @@ game_offsets add_game(flatbuffers::FlatBufferBuilder& fbb, const game_list* game
         for (const game_event& e : game->events) events.push_back(to_wire(e));
         out.events = fbb.CreateVectorOfStructs(events.data(), events.size());
     }
+    out.player_values = wire_structs<GameValue>(fbb, game->player_values);
+    out.team_values = wire_structs<GameValue>(fbb, game->team_values);
+    out.records = wire_structs<GameEventRecord>(fbb, game->records);
     return out;
 }
 
@@ -81,7 +98,8 @@ flatbuffers::Offset<Snapshot> create_snapshot(flatbuffers::FlatBufferBuilder& fb
     const shape_offsets described = add_shapes(fbb, shapes);
     const game_offsets g = add_game(fbb, game);
     return CreateSnapshot(fbb, tick, ack_sequence, bodies, baseline_tick, delta, described.shapes, described.vertices,
-                          g.players, g.name_ids, g.names, g.events, described.origins, extra_inputs_waiting);
+                          g.players, g.name_ids, g.names, g.events, described.origins, extra_inputs_waiting,
+                          g.player_values, g.team_values, g.records);
 }
 
 void build_snapshot(flatbuffers::FlatBufferBuilder& fbb, std::uint32_t tick, std::uint32_t ack_sequence,

@@ -49,6 +49,9 @@ public:
     std::span<const game_event> events() const override { return events_; }
     // The highest score; a tie at the top is nobody's win.
     uint32_t winner() const override;
+    // Its scoreboard's fields (score, kills, deaths, shots, hits, lives, ranked by score), its
+    // bodies and its keys; its events stay the protocol's own GameEvent kinds.
+    protocol::game_manifest manifest() const override;
 
     const asteroids_params& params() const { return params_; }
     // Rock size of body `id`: 3 large, 2 medium, 1 small, 0 not a rock.

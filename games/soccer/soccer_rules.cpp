@@ -13,8 +13,9 @@ using world::vec2;
 
 namespace {
 
-// Kick-off spots: a team's players in a column a quarter of the pitch from the centre line,
-// `spacing` apart across it, on as many columns as the pitch's height needs.
+// Kick-off spots: a team's players in a column a quarter of the pitch from the centre line, the
+// first on the line through the goals, the next ones `spacing` above and below it in turn; a full
+// column (five on the default pitch) starts another one `spacing` further back.
 constexpr real spacing = 3.0f;
 
 }  // namespace
@@ -94,13 +95,17 @@ void soccer_rules::roll_ball(world::world& w) const {
 }
 
 void soccer_rules::after_step(world::world& w) {
+    events_.clear();
     if (finished_) return;
     for (const world::contact_event& e : w.contact_events()) {
         if (e.a != ball_ && e.b != ball_) continue;
         if (const uint32_t id = player_of_body(e.a == ball_ ? e.b : e.a); id != 0) last_touch_ = id;
     }
     if (kickoff_at_ == 0) check_goal(w);
-    if (w.tick() >= final_tick_) finished_ = true;
+    if (w.tick() >= final_tick_) {
+        finished_ = true;
+        events_.push_back({static_cast<uint8_t>(soccer_event::full_time), {winning_team()}});
+    }
 }
 
 void soccer_rules::check_goal(world::world& w) {
@@ -112,13 +117,18 @@ void soccer_rules::check_goal(world::world& w) {
     if (ball->position.x() < pitch.left - ball->radius) scorers = team_blue;
     if (scorers == 0) return;
     (scorers == team_red ? goals_red_ : goals_blue_) += 1;
-    if (auto it = players_.find(last_touch_); it != players_.end() && it->second.team == scorers) it->second.goals += 1;
+    const auto it = players_.find(last_touch_);
+    const bool own_goal = it != players_.end() && it->second.team != scorers;
+    if (it != players_.end() && !own_goal) it->second.goals += 1;
+    events_.push_back({static_cast<uint8_t>(own_goal ? soccer_event::own_goal : soccer_event::goal),
+                       {static_cast<int32_t>(last_touch_), scorers}});
     kickoff_at_ = w.tick() + std::max<uint32_t>(params_.kickoff_ticks, 1);
 }
 
 void soccer_rules::kick_off(world::world& w) {
     kickoff_at_ = 0;
     last_touch_ = 0;
+    events_.push_back({static_cast<uint8_t>(soccer_event::kickoff), {}});
     if (world::body* ball = w.find(ball_)) {
         ball->position = pitch.centre();
         ball->velocity = {0, 0};
@@ -134,11 +144,14 @@ void soccer_rules::place_in_half(world::world& w, uint32_t player_id, const play
     uint32_t index = 0;
     for (const auto& [id, other] : players_)
         if (other.team == p.team && id < player_id) ++index;
-    const auto rows = static_cast<uint32_t>((pitch.top - pitch.bottom) / spacing) - 1;
+    const auto reach = static_cast<uint32_t>(((pitch.top - pitch.bottom) / 2 - b->radius - 0.5f) / spacing);
+    const uint32_t rows = 2 * reach + 1;
     const uint32_t row = index % rows, column = index / rows;
+    // Row 0 on the line, 1 above, 2 below, 3 further above...
+    const real across = spacing * static_cast<real>((row + 1) / 2) * (row % 2 == 1 ? 1.0f : -1.0f);
     const real side = p.team == team_red ? -1.0f : 1.0f;
     const real x = pitch.centre().x() + side * (pitch.length() / 4 + spacing * static_cast<real>(column));
-    const real y = pitch.bottom + spacing * static_cast<real>(row + 1);
+    const real y = pitch.centre().y() + across;
     b->position = {std::clamp(x, pitch.left + b->radius, pitch.right - b->radius), y};
     b->velocity = {0, 0};
     b->angular_velocity = 0;
@@ -179,12 +192,45 @@ std::vector<score_line> soccer_rules::scoreboard() const {
     std::vector<score_line> board;
     board.reserve(players_.size());
     for (const auto& [id, p] : players_)
-        board.push_back({.player = id, .score = p.goals, .shots = p.kicks, .team = p.team});
+        board.push_back({.player = id,
+                         .score = p.goals,
+                         .shots = p.kicks,
+                         .team = p.team,
+                         .values = {p.team, static_cast<int32_t>(p.goals), static_cast<int32_t>(p.kicks)}});
     return board;
 }
 
 std::vector<team_line> soccer_rules::teams() const {
-    return {{team_red, "red", goals_red_}, {team_blue, "blue", goals_blue_}};
+    return {{team_red, "red", goals_red_, {static_cast<int32_t>(goals_red_)}},
+            {team_blue, "blue", goals_blue_, {static_cast<int32_t>(goals_blue_)}}};
+}
+
+std::vector<uint32_t> soccer_rules::winners() const {
+    std::vector<uint32_t> out;
+    const uint8_t team = winning_team();
+    for (const auto& [id, p] : players_)
+        if (team != 0 && p.team == team) out.push_back(id);
+    return out;
+}
+
+protocol::game_manifest soccer_rules::manifest() const {
+    using protocol::GameFieldKind;
+    protocol::game_manifest m;
+    m.name = "soccer";
+    m.player_fields = {{"team", "Team", GameFieldKind::team},
+                       {"goals", "Goals", GameFieldKind::count},
+                       {"kicks", "Kicks", GameFieldKind::count}};
+    m.team_fields = {{"goals", "Goals", GameFieldKind::count}};
+    m.teams = {{"red", "#e04848"}, {"blue", "#4878e0"}};
+    m.rank_field = "goals";
+    // In soccer_event's order.
+    m.events = {{"goal", {"player", "team"}, "{player} scores for {team}"},
+                {"own_goal", {"player", "team"}, "own goal by {player}: a goal for {team}"},
+                {"kickoff", {}, "kick-off"},
+                {"full_time", {"team"}, "full time: {team}"}};
+    m.body_tags = {{kind_player, "player", "ship", "team"}, {kind_ball, "ball", "disc", "#ffffff"}};
+    m.inputs = {{"kick", 1, "Space"}, {"dash", 0, "ShiftLeft"}};
+    return m;
 }
 
 uint8_t soccer_rules::winning_team() const {

@@ -27,6 +27,8 @@ inline constexpr uint8_t team_blue = 2;
 // BodyShape.kind of the game's bodies: a player (drawn with its facing) and the ball.
 inline constexpr uint8_t kind_player = 1;
 inline constexpr uint8_t kind_ball = 4;
+// Its events (manifest().events, in this order).
+enum class soccer_event : uint8_t { goal, own_goal, kickoff, full_time };
 
 class soccer_rules : public rules {
 public:
@@ -46,7 +48,12 @@ public:
     std::vector<score_line> scoreboard() const override;
     std::vector<team_line> teams() const override;
     uint8_t winning_team() const override;
+    std::vector<uint32_t> winners() const override;
     bool finished() const override { return finished_; }
+    // Team, goals and kicks a player; goals a team; goal, own goal, kick-off and full time;
+    // the players drawn in their team's colour and the ball as a white disc; kick on Space.
+    protocol::game_manifest manifest() const override;
+    std::span<const declared_event> declared_events() const override { return events_; }
 
     uint32_t ball() const { return ball_; }
     uint32_t score(uint8_t team) const { return team == team_red ? goals_red_ : goals_blue_; }
@@ -81,6 +88,7 @@ private:
     uint32_t last_touch_ = 0;  // player id, 0 = nobody since the kick-off
     uint32_t kickoff_at_ = 0;  // world tick of the next kick-off, 0 = none pending
     bool finished_ = false;
+    std::vector<declared_event> events_;  // the last after_step's
 };
 
 }  // namespace arena::rules

@@ -10,6 +10,7 @@
 // says through which version it is complete: a list too long for one datagram (32 names on
 // a client's first snapshot) goes over a few, and an acknowledgement never claims more than
 // arrived.
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -29,10 +30,15 @@ public:
     // that long misses them; its lines still bring every score).
     explicit game_feed(uint32_t keep_ticks) : keep_ticks_(keep_ticks) {}
 
+    // How many values the game declares per player and per team (its manifest's fields): only
+    // those go on the wire. None until called.
+    void declare(size_t player_fields, size_t team_fields);
+
     // The state after the step that made world tick `tick`: the rules' scoreboard and events,
-    // and the players' names (by player id).
+    // the players' names (by player id), the teams and the game's own events.
     void update(uint32_t tick, std::span<const rules::score_line> board, std::span<const rules::game_event> events,
-                const std::map<world::player_id, std::string>& names);
+                const std::map<world::player_id, std::string>& names, std::span<const rules::team_line> teams = {},
+                std::span<const rules::declared_event> records = {});
 
     // Into `out` (cleared first): the lines and names whose version is after `after` (0:
     // every one), and the events after max(after, events_after), lines and names in player id
@@ -44,23 +50,38 @@ public:
     // The newest change's version (0: none yet).
     [[nodiscard]] uint32_t version() const { return version_; }
 
-    // Every line now, in player id order, with its name: the final scoreboard.
+    // Every line now, in player id order, with its name and its declared values, and the
+    // teams' values: the final scoreboard.
     [[nodiscard]] protocol::match_result result(uint32_t winner) const;
 
     [[nodiscard]] bool empty() const { return players_.empty(); }
     [[nodiscard]] uint32_t events_so_far() const { return next_sequence_ - 1; }
 
 private:
+    using values = std::array<int32_t, protocol::max_game_fields>;
+    using versions = std::array<uint32_t, protocol::max_game_fields>;
     struct entry {
         protocol::player_row row;
         uint32_t changed = 0;  // version of the last change of score, kills, deaths, lives or state
         std::string name;
         uint32_t named = 0;  // version of its name's arrival; 0: not known yet
+        values declared{};
+        versions declared_changed{};  // each value's last change
+    };
+    struct team_entry {
+        values declared{};
+        versions declared_changed{};
     };
     struct versioned_event {
         uint32_t version;
         protocol::game_event event;
     };
+    struct versioned_record {
+        uint32_t version;
+        protocol::event_record record;
+    };
+    // Takes `now` into `held`, each value that changed (or every one, `fresh`) under a new version.
+    void take_values(const values& now, values& held, versions& changed, size_t count, bool fresh);
     // One of collect()'s candidates: its version and its bytes on the wire.
     struct change {
         uint32_t version;
@@ -69,7 +90,11 @@ private:
     uint32_t keep_ticks_;
     std::map<uint32_t, entry> players_;  // by player id
     std::deque<versioned_event> events_;
+    std::map<uint8_t, team_entry> teams_;  // by team number
+    std::deque<versioned_record> records_;
+    size_t player_fields_ = 0, team_fields_ = 0;
     uint32_t next_sequence_ = 1;
+    uint32_t next_record_ = 1;
     uint32_t version_ = 0;
     std::vector<change> changes_;  // collect()'s scratch
 };

@@ -30,12 +30,17 @@ match::match(const match_config& config, const world::world_config& world_config
       admission_(config.admission, config.tick_rate, std::move(check_token)),
       world_(world_config, config.seed),
       rules_(games::make_rules(world_)),
+      manifest_(rules_->manifest()),
       world_config_json_(config::config_to_json(world_config)),
       world_config_hash_(protocol::world_config_hash(world_config_json_)),
       fanout_({config.view_radius, baseline_ring(), config.tick_rate}),
       // Events are kept for a few seconds of lost snapshots (each client's acknowledgements
       // say what it holds, however old), at least as long as a delta baseline.
       game_(std::max(config.delta_history * snapshot_interval(), event_memory_s * config.tick_rate)) {
+    // A game's manifest is its code's: one that breaks the protocol's bounds is a bug in the game.
+    if (const std::string bad = protocol::manifest_problem(manifest_); !bad.empty())
+        throw std::invalid_argument("the game's manifest: " + bad);
+    game_.declare(manifest_.player_fields.size(), manifest_.team_fields.size());
     // The Welcome tells clients the snapshot rate; it must be the rate they get.
     if (config.tick_rate == 0 || config.snapshot_rate == 0 || config.tick_rate % config.snapshot_rate != 0)
         throw std::invalid_argument("snapshot rate " + std::to_string(config.snapshot_rate) +
@@ -154,7 +159,10 @@ void match::shut_down(std::string_view reason) {
 
 protocol::match_result match::result() const {
     if (!rules_->has_state()) return {};
-    return game_.result(rules_->winner());
+    protocol::match_result r = game_.result(rules_->winner());
+    r.winning_team = rules_->winning_team();
+    r.winners = rules_->winners();
+    return r;
 }
 
 void match::forget(client_map::iterator it, const close_cause& cause) {
@@ -239,7 +247,7 @@ void match::tick() {
     tag_new_bodies();
     if (rules_->has_state()) {
         const std::vector<rules::score_line> board = rules_->scoreboard();
-        game_.update(world_.tick(), board, rules_->events(), names_);
+        game_.update(world_.tick(), board, rules_->events(), names_, rules_->teams(), rules_->declared_events());
         if (config_.score_limit > 0)
             for (const rules::score_line& line : board) over_ = over_ || line.score >= config_.score_limit;
         over_ = over_ || rules_->finished();

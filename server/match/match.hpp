@@ -239,6 +239,7 @@ private:
     admission admission_;
     world::world world_;
     std::unique_ptr<rules::rules> rules_;            // set up on world_, before anything else touches it
+    protocol::game_manifest manifest_;               // what the rules declare of the game, asked once
     std::map<world::player_id, std::string> names_;  // every player who joined, for the scoreboard after they left
     std::string world_config_json_;
     uint64_t world_config_hash_;

@@ -223,6 +223,7 @@ protocol::welcome_info match::welcome_for(uint32_t player_id, uint32_t body_id) 
     welcome.statics = static_geometry(world_, kinds_);
     welcome.match = config_.match_id;
     welcome.mode = config_.mode;
+    welcome.game = manifest_;
     return welcome;
 }
 

@@ -7,12 +7,14 @@
 //
 // A game brings its own rules by deriving from `rules` in its folder, games/NAME/, and
 // registering itself there (game.hpp; docs/GAMES.md).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "protocol/manifest.hpp"
 #include "server/world/hash.hpp"
 #include "server/world/input.hpp"
 #include "server/world/world.hpp"
@@ -34,6 +36,8 @@ struct score_line {
     bool out = false;  // no lives left, or left the match
     player_state state = player_state::playing;
     uint8_t team = 0;  // the player's team (teams()), 0 in a game without teams
+    // The game's own values for this player, in the order of its manifest's player_fields.
+    std::array<int32_t, protocol::max_game_fields> values{};
 };
 
 // One team's line: its number (score_line.team), its name and its score.
@@ -41,7 +45,17 @@ struct team_line {
     uint8_t team = 0;
     std::string name;
     uint32_t score = 0;
+    // The game's own values for this team, in the order of its manifest's team_fields.
+    std::array<int32_t, protocol::max_game_fields> values{};
     bool operator==(const team_line&) const = default;
+};
+
+// One of the game's own events: the index of its kind in the manifest's events, and the values
+// that kind declares, in order.
+struct declared_event {
+    uint8_t kind = 0;
+    std::array<int32_t, protocol::max_event_values> values{};
+    bool operator==(const declared_event&) const = default;
 };
 
 // Something that happened in a step, for the players to hear (protocol GameEvent; the
@@ -99,12 +113,20 @@ public:
     virtual std::vector<score_line> scoreboard() const { return {}; }
     // What happened in the last after_step, in order (derived from the state: not hashed).
     virtual std::span<const game_event> events() const { return {}; }
+    // What the game declares of itself for the wire (protocol/manifest.hpp): its fields, teams,
+    // events, body tags and inputs; empty for a game that declares nothing. Asked once per match.
+    virtual protocol::game_manifest manifest() const { return {}; }
+    // The game's own events of the last after_step, in order (manifest().events; not hashed).
+    virtual std::span<const declared_event> declared_events() const { return {}; }
     // The player winning now, as this game decides it; 0 = nobody (a tie, a team game, or no game).
     virtual uint32_t winner() const { return 0; }
     // The teams and their scores, in team order (empty in a game without teams).
     virtual std::vector<team_line> teams() const { return {}; }
     // The team winning now; 0 = none (a draw, or no teams).
     virtual uint8_t winning_team() const { return 0; }
+    // The players winning now: the winning team's, or every player tied at the top; empty:
+    // nobody. By default winner() alone.
+    virtual std::vector<uint32_t> winners() const;
     // True once the rules have ended the match (a clock ran out): the match says Bye to
     // everyone with the result, as at --score-limit.
     virtual bool finished() const { return false; }

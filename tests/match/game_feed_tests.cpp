@@ -180,3 +180,42 @@ TEST_CASE("the result holds every line with its name and the rules' winner", "[m
     CHECK(r.scoreboard[1].state == protocol::PlayerState::out);
     CHECK(r.scoreboard[1].lives == 0);
 }
+
+TEST_CASE("a game's declared values go one by one as they change, with its teams' and its events once",
+          "[match][game][manifest]") {
+    match::game_feed feed(96);
+    feed.declare(2, 1);  // two player fields, one team field
+    std::vector<rules::score_line> board{line(1, 0), line(2, 0)};
+    board[0].values = {1, 0, 99};  // a third value the manifest does not declare: never sent
+    board[1].values = {2, 0};
+    std::vector<rules::team_line> teams{{1, "red", 0, {0}}, {2, "blue", 0, {0}}};
+    feed.update(1, board, {}, names, teams);
+    protocol::game_list out;
+    feed.collect(0, 0, out);
+    CHECK(out.player_values == std::vector<protocol::game_value>{{1, 0, 1}, {1, 1, 0}, {2, 0, 2}, {2, 1, 0}});
+    CHECK(out.team_values == std::vector<protocol::game_value>{{1, 0, 0}, {2, 0, 0}});
+    const uint32_t held = feed.version();
+
+    // Player 2 scores: its goals and its team's, and the goal once, nothing else.
+    board[1].values = {2, 1};
+    teams[1].values = {1};
+    const rules::declared_event goal{0, {2, 2}};
+    feed.update(2, board, {}, names, teams, std::span(&goal, 1));
+    feed.collect(held, held, out);
+    CHECK(out.player_values == std::vector<protocol::game_value>{{2, 1, 1}});
+    CHECK(out.team_values == std::vector<protocol::game_value>{{2, 0, 1}});
+    REQUIRE(out.records.size() == 1);
+    CHECK(out.records[0].sequence == 1);
+    CHECK(out.records[0].tick == 2);
+    CHECK(out.records[0].kind == 0);
+    CHECK(out.records[0].values[0] == 2);
+    CHECK(out.records[0].values[1] == 2);
+    CHECK(out.wire_bytes() == 2 * protocol::game_list::value_bytes + protocol::game_list::record_bytes);
+    feed.collect(feed.version(), feed.version(), out);
+    CHECK(out.empty());
+
+    // The final result holds every declared value.
+    const protocol::match_result r = feed.result(0);
+    CHECK(r.player_values == std::vector<protocol::game_value>{{1, 0, 1}, {1, 1, 0}, {2, 0, 2}, {2, 1, 1}});
+    CHECK(r.team_values == std::vector<protocol::game_value>{{1, 0, 0}, {2, 0, 1}});
+}

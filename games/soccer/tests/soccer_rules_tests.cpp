@@ -130,6 +130,7 @@ TEST_CASE("a ball wholly past a goal line scores for the attackers and for the l
     pitch_match m(2);
     world::body& red = m.body_of(1);
     red.position = m.ball().position - vec2{1.6f, 0};
+    m.body_of(2).position = {34, 20};  // blue stands aside (it starts on the ball's way)
     m.ball().velocity = {0, 0};
     m.step({1});  // red kicks towards the right goal (blue's)
     CHECK(m.ball().velocity.x() > 10);

@@ -39,10 +39,18 @@ export interface Flash {
   colour: string;
 }
 
-// Asteroids' kinds (games/asteroids/asteroids_rules.hpp).
+// The kinds a server that sends no manifest means (Asteroids' before manifests); a game's own
+// tags come from its manifest (setTags).
 export const KIND_SHIP = 1;
 export const KIND_ROCK = 2;
 export const KIND_BULLET = 3;
+
+/** How to draw a kind of body (Welcome.game.body_tags). colour 'team': its owner's team colour. */
+export interface Tag {
+  kind: number;
+  style: string; // 'ship', 'disc' or '' (the shape)
+  colour: string;
+}
 
 /** Metres shown across the canvas's shorter side, around the own ship. */
 export const VIEW_METRES = 90;
@@ -54,11 +62,19 @@ export class Painter {
   private cy = 0;
   private world: World = { wraps: false, width: 0, height: 0 };
   private player = 0;
+  private tags: Map<number, Tag> | null = null;
+  private ownerColour: (owner: number) => string | null = () => null;
 
   constructor(private readonly canvas: HTMLCanvasElement) {
     const g = canvas.getContext('2d');
     if (!g) throw new Error('no 2D canvas in this browser');
     this.g = g;
+  }
+
+  /** The game's body tags (null: the kinds of before), and the colour of an owner's team. */
+  setTags(tags: Tag[] | null, ownerColour: (owner: number) => string | null): void {
+    this.tags = tags ? new Map(tags.map((t) => [t.kind, t])) : null;
+    this.ownerColour = ownerColour;
   }
 
   /** `player`: the own player's id; its ship is drawn in gold, predicted or not. `span`: metres
@@ -120,14 +136,25 @@ export class Painter {
   }
 
   private drawBody(b: Body): void {
+    if (this.tags) return this.drawTagged(b, this.tags.get(b.kind));
     if (b.kind === KIND_SHIP) return this.ship(b);
     if (b.kind === KIND_BULLET) return this.dot(b, b.shape?.radius ?? 0.2, '#ffe27a');
     if (b.shape) return this.body(b.x, b.y, b.angle, b.shape, b.kind === KIND_ROCK ? '#2a2f3a' : '#333', '#9aa3b5');
     this.dot(b, 1, '#888');
   }
 
-  /** A ship: an arrowhead pointing along its facing, inside its collision circle. */
-  private ship(b: Body): void {
+  /** A body as its game's tag says: a ship, a disc or its shape, in its colour. */
+  private drawTagged(b: Body, tag: Tag | undefined): void {
+    const colour = tag?.colour === 'team' ? this.ownerColour(b.owner) : tag?.colour || null;
+    if (tag?.style === 'ship') return this.ship(b, colour);
+    if (tag?.style === 'disc') return this.dot(b, b.shape?.radius ?? 0.2, colour ?? '#ffe27a');
+    if (b.shape) return this.body(b.x, b.y, b.angle, b.shape, colour ?? '#2a2f3a', '#9aa3b5');
+    this.dot(b, 1, colour ?? '#888');
+  }
+
+  /** A ship: an arrowhead pointing along its facing, inside its collision circle; the own one
+   *  gold, the others `colour` (their team's) or blue. */
+  private ship(b: Body, colour: string | null = null): void {
     const { g } = this;
     const [sx, sy] = this.toScreen(b.x, b.y);
     const r = (b.shape?.radius ?? 1.5) * this.scale;
@@ -141,7 +168,7 @@ export class Painter {
     g.lineTo(-r * 0.8, -r * 0.7);
     g.closePath();
     const mine = b.predicted || b.owner === this.player;
-    g.fillStyle = mine ? '#ffcf33' : '#5ec8ff';
+    g.fillStyle = colour ?? (mine ? '#ffcf33' : '#5ec8ff');
     g.fill();
     g.strokeStyle = mine ? '#fff3c4' : '#d4f0ff';
     g.lineWidth = Math.max(1, this.scale * 0.12);

@@ -2,6 +2,8 @@
 // a spectator, that it is spectating), the scoreboard, and the connection's figures (ping, snapshots a second, the prediction error). Written into the page's elements at most a few
 // times a second; the numbers are also data-* attributes so that tests read them exactly.
 
+import { Manifest, shown, teamColour, teamField, teamName } from './game.js';
+
 export interface Line {
   playerId: number;
   name: string;
@@ -13,6 +15,11 @@ export interface Line {
 }
 
 const STATE = ['', 'respawning', 'out'];
+
+/** The help line from the game's declared keys: "arrows turn and run · Space kick · ShiftLeft dash". */
+function help(game: Manifest): void {
+  el('help').textContent = ['arrows turn and move', ...game.inputs.map((i) => `${i.key} ${i.name}`)].join(' · ');
+}
 
 function el(id: string): HTMLElement {
   const e = document.getElementById(id);
@@ -31,6 +38,8 @@ export class Hud {
   private readonly status = el('status');
 
   private shown = 0;
+  private game: Manifest | null = null;
+  private tickRate = 0;
 
   /** A spectator has no score and no lives: the line says that it watches. */
   spectating(): void {
@@ -68,6 +77,71 @@ export class Hud {
     setTimeout(() => {
       if (this.shown === shown && this.status.textContent === text) this.setStatus('');
     }, 2000);
+  }
+
+  /** The game's manifest: its scoreboard's columns, its teams. Its fields replace the protocol's
+   *  own columns unless those already show them all (Asteroids). */
+  declare(game: Manifest | null, tickRate: number): void {
+    const own = ['score', 'kills', 'deaths', 'shots', 'hits', 'lives'];
+    this.game = game && game.playerFields.some((f) => !own.includes(f.name)) ? game : null;
+    this.tickRate = tickRate;
+    if (!this.game) return;
+    const head = document.createElement('tr');
+    for (const label of ['player', ...this.game.playerFields.map((f) => f.label)]) {
+      const th = document.createElement('th');
+      th.textContent = label;
+      head.appendChild(th);
+    }
+    (el('scoreboard-table') as HTMLTableElement).tHead?.replaceChildren(head);
+    const rank = this.game.playerFields.find((f) => f.name === this.game?.rankField);
+    el('own').firstElementChild?.replaceChildren(document.createTextNode(`${(rank?.label ?? 'score').toLowerCase()} `), this.score);
+    help(this.game);
+  }
+
+  /** The game's declared scoreboard (declare() first): `values` by player id in the manifest's
+   *  field order, `teams` by team number. */
+  declared(own: number, lines: Line[], values: Map<number, number[]>, teams: Map<number, number[]>): void {
+    const game = this.game;
+    if (!game) return this.players(own, lines);
+    const rank = game.playerFields.findIndex((f) => f.name === game.rankField);
+    const value = (id: number, k: number) => (k < 0 ? 0 : values.get(id)?.[k] ?? 0);
+    const me = lines.find((l) => l.playerId === own);
+    this.score.textContent = String(value(own, rank));
+    this.score.dataset.value = String(value(own, rank));
+    this.lives.textContent = '–';
+    const order = game.rankAscending ? 1 : -1;
+    const sorted = [...lines].sort((a, b) => order * (value(a.playerId, rank) - value(b.playerId, rank)) || a.playerId - b.playerId);
+    const shownLines = sorted.slice(0, 10);
+    if (me && !shownLines.includes(me)) shownLines.push(me);
+    const team = teamField(game);
+    this.board.replaceChildren(
+      ...shownLines.map((l) => {
+        const tr = document.createElement('tr');
+        if (l.playerId === own) tr.className = 'me';
+        const colour = team >= 0 ? teamColour(game, value(l.playerId, team)) : null;
+        if (colour) tr.style.color = colour;
+        const cells = [l.name || `#${l.playerId}`, ...game.playerFields.map((f, k) => shown(game, f, value(l.playerId, k), this.tickRate))];
+        for (const text of cells) {
+          const td = document.createElement('td');
+          td.textContent = text;
+          tr.appendChild(td);
+        }
+        return tr;
+      }),
+    );
+    // The teams' own values: "red 1 · blue 0".
+    const line = el('teams');
+    line.hidden = teams.size === 0;
+    line.replaceChildren(
+      ...[...teams].map(([number, held], i) => {
+        const span = document.createElement('span');
+        span.dataset.team = teamName(game, number);
+        span.dataset.value = String(held[0] ?? 0);
+        span.style.color = teamColour(game, number) ?? '';
+        span.textContent = `${i > 0 ? ' · ' : ''}${teamName(game, number)} ${game.teamFields.map((_, k) => held[k] ?? 0).join(' ')}`;
+        return span;
+      }),
+    );
   }
 
   players(own: number, lines: Line[]): void {

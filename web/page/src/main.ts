@@ -10,6 +10,7 @@ import { connect } from './arena-sdk.mjs';
 import type { ConnectOptions } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
 import { Body, Flash, KIND_BULLET, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
+import { Manifest, eventText, teamColour, teamField, teamName } from './game.js';
 import { Hud, Line } from './hud.js';
 import { PageQuery, inviteLink, lobbyLink, readQuery } from './links.js';
 import { LobbyState, newLobbyState, showLobby } from './lobby.js';
@@ -57,6 +58,9 @@ interface PageState {
   invite: string;
   /** ?lobby: the lobby's matches and its last error; null on the game's page. */
   lobby: LobbyState | null;
+  /** The game's manifest (Welcome.game), and its events as the page told them. */
+  game: Manifest | null;
+  records: { kind: number; values: number[]; text: string }[];
 }
 
 declare global {
@@ -69,7 +73,7 @@ function newPageState(spectating: boolean): PageState {
   return {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
-    bye: null, error: '', match: '', mode: '', invite: '', lobby: null,
+    bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [],
   };
 }
 
@@ -125,7 +129,14 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
   const lastSeen = new Map<number, { x: number; y: number; r: number }>();
 
   const lines = (): Line[] => [...client.players.values()];
-  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[]; match: string; mode: string }) => {
+  const nameOf = (player: number) => client.players.get(player)?.name || (player === 0 ? 'nobody' : `#${player}`);
+  // A body's owner's team colour, from the game's declared team field.
+  const ownerColour = (owner: number): string | null => {
+    const game = page.game;
+    const field = game ? teamField(game) : -1;
+    return game && field >= 0 ? teamColour(game, client.values.get(owner)?.[field] ?? 0) : null;
+  };
+  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[]; match: string; mode: string; game: Manifest | null; tickRate: number }) => {
     page.playerId = w.playerId;
     page.entityId = w.entityId;
     page.match = w.match;
@@ -134,6 +145,10 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     hud.match(w.match, w.mode, page.invite);
     world = w.world;
     statics = w.statics;
+    page.game = w.game;
+    hud.declare(w.game, w.tickRate);
+    if (w.game) controls?.declare(w.game.inputs);
+    painter.setTags(w.game?.bodyTags ?? null, ownerColour);
     hud.setStatus('');
   });
   client.on('snapshot', (s: { tick: number; bodies: { id: number; owner: number; x: number; y: number }[]; predictionError: number | null }) => {
@@ -150,7 +165,16 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
       keep(page.predictionErrors, s.predictionError);
     }
   });
-  client.on('players', () => hud.players(page.playerId, lines()));
+  client.on('players', () => hud.declared(page.playerId, lines(), client.values, client.teamValues));
+  // The game's own events, told as its manifest says.
+  client.on('record', (r: { kind: number; values: number[] }) => {
+    ++page.events;
+    if (!page.game) return;
+    const text = eventText(page.game, r.kind, r.values, nameOf);
+    page.records.push({ kind: r.kind, values: r.values, text });
+    if (page.records.length > 256) page.records.shift();
+    hud.flashStatus(text);
+  });
   client.on('event', (e: { kind: number; body: number; player: number; size: number }) => {
     ++page.events;
     const at = lastSeen.get(e.body);
@@ -161,11 +185,14 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     else if (e.kind === 3) hud.flashStatus(`wave ${e.size}`);
     else if (e.kind === 2 && e.player === page.playerId) hud.flashStatus('respawned');
   });
-  client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[] }) => {
+  client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[]; winningTeam?: number }) => {
     page.bye = b;
-    if (b.scoreboard.length > 0) hud.players(page.playerId, b.scoreboard);
+    if (b.scoreboard.length > 0 && !page.game) hud.players(page.playerId, b.scoreboard);
     const winner = b.scoreboard.find((l) => l.playerId === b.winner);
-    hud.setStatus(b.matchOver ? `match over${winner ? `: ${winner.name || '#' + winner.playerId} wins` : ''}` : `disconnected: ${b.reason}`);
+    // A team game's result is its team's: a winner or a draw.
+    const teams = page.game !== null && page.game.teams.length > 0;
+    const result = teams ? (b.winningTeam ? `: ${teamName(page.game as Manifest, b.winningTeam)} win` : ': a draw') : winner ? `: ${winner.name || '#' + winner.playerId} wins` : '';
+    hud.setStatus(b.matchOver ? `match over${result}` : `disconnected: ${b.reason}`);
   });
 
   const draw = (now: number) => {

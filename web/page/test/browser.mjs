@@ -24,3 +24,24 @@ export async function until(what, check, timeoutMs = 8000) {
     await sleep(50);
   }
 }
+
+// Starts `server` with `args` (its --http-port 0 among them) and waits for its HTTP port: the
+// process, a promise of how it exited, and the page's URL.
+export async function startServer(server, args, timeoutMs = 15000) {
+  const { spawn } = await import('node:child_process');
+  const proc = spawn(server, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  const exited = new Promise((resolve) => proc.on('exit', (code, signal) => resolve({ code, signal })));
+  let out = '';
+  let err = '';
+  proc.stdout.on('data', (d) => (out += d));
+  proc.stderr.on('data', (d) => (err += d));
+  const port = await until('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1], timeoutMs).catch((e) => {
+    throw new Error(`${e.message}\n${out}\n${err}`);
+  });
+  return { proc, exited, url: `http://127.0.0.1:${port}/` };
+}
+
+// A headless Chromium as the browser tests run it.
+export function launchBrowser(chromium) {
+  return puppeteer.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox', '--disable-gpu'] });
+}

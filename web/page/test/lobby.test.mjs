@@ -5,13 +5,12 @@
 // unknown mode's refusal shows as one line on the lobby.
 //   ARENA_SERVER   the arena-server binary       ARENA_CHROMIUM  the browser
 //   NODE_PATH      the page's node_modules (puppeteer-core, from web/page/package-lock.json)
-import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { need, puppeteer, until } from './browser.mjs';
+import { launchBrowser, need, startServer, until } from './browser.mjs';
 
 const server = need('ARENA_SERVER');
 const chromium = need('ARENA_CHROMIUM');
@@ -25,16 +24,8 @@ const problems = [];
 before(async () => {
   const modes = join(dir, 'modes.json');
   writeFileSync(modes, '{"modes": [{"name": "duel", "preset": "asteroids", "max_players": 2}]}');
-  proc = spawn(server, ['--port', '0', '--http-port', '0', '--modes', modes, '--drain-grace', '1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-  let out = '';
-  let err = '';
-  proc.stdout.on('data', (d) => (out += d));
-  proc.stderr.on('data', (d) => (err += d));
-  const port = await until('the server\'s http port', () => out.match(/^http listening on .*:(\d+)$/m)?.[1], 15000).catch((e) => {
-    throw new Error(`${e.message}\n${out}\n${err}`);
-  });
-  url = `http://127.0.0.1:${port}/`;
-  browser = await puppeteer.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox', '--disable-gpu'] });
+  ({ proc, url } = await startServer(server, ['--port', '0', '--http-port', '0', '--modes', modes, '--drain-grace', '1']));
+  browser = await launchBrowser(chromium);
 });
 
 after(async () => {

@@ -5,7 +5,7 @@
 // the SDK reads the rest (names, scoreboard, game events) with the generated TypeScript.
 import { BodyState, Core, CoreModuleOptions, Payload, Shape, StaticBody } from './core.js';
 import { Interpolator, InterpolationOptions } from './interpolation.js';
-import { ByeFields, GameEvent, PlayerLine, WelcomeFields, readBye, readMessage, readPong, readReject, readSnapshotExtras, readWelcome } from './messages.js';
+import { ByeFields, GameEvent, GameRecord, GameValue, PlayerLine, WelcomeFields, readBye, readMessage, readPong, readReject, readSnapshotExtras, readWelcome } from './messages.js';
 import { CoreSession, OwnBullet } from './session.js';
 import { CorrectionSmoother, SmoothingOptions } from './smoothing.js';
 
@@ -89,6 +89,8 @@ interface Events {
   snapshot: SnapshotEvent;
   players: { players: PlayerLine[]; names: Map<number, string> };
   event: GameEvent;
+  /** One of the game's declared events (Welcome.game.events[kind]), each once, in order. */
+  record: GameRecord;
   pong: { rtt: number; serverTick: number };
   bye: ByeFields;
 }
@@ -116,6 +118,11 @@ export class ArenaClient {
   /** Round-trip time of the last Pong, ms. */
   rtt: number | null = null;
   readonly players = new Map<number, PlayerLine & { name: string }>();
+  /** The game's declared values (Welcome.game): each player's and each team's, in the
+   *  manifest's field order, as of the newest snapshot. */
+  readonly values = new Map<number, number[]>();
+  readonly teamValues = new Map<number, number[]>();
+  private lastRecord = 0;
 
   constructor(core: Core, socket: SocketLike, name: string, token: string, options: ConnectOptions) {
     this.options = options;
@@ -297,6 +304,23 @@ export class ArenaClient {
       if (e.sequence <= this.lastEvent) continue;
       this.lastEvent = e.sequence;
       this.emit('event', e);
+    }
+    const game = this.welcome?.game ?? null;
+    const keep = (into: Map<number, number[]>, list: GameValue[], fields: number) => {
+      for (const v of list) {
+        if (v.field >= fields) continue;  // not in the manifest: the server's bug, not trusted
+        const held = into.get(v.owner) ?? new Array<number>(fields).fill(0);
+        held[v.field] = v.value;
+        into.set(v.owner, held);
+      }
+    };
+    keep(this.values, extras.playerValues, game?.playerFields.length ?? 0);
+    keep(this.teamValues, extras.teamValues, game?.teamFields.length ?? 0);
+    if (extras.playerValues.length > 0 || extras.teamValues.length > 0) this.emit('players', { players: extras.players, names: extras.names });
+    for (const r of extras.records) {
+      if (r.sequence <= this.lastRecord) continue;
+      this.lastRecord = r.sequence;
+      this.emit('record', r);
     }
     if (this.session.deltaProblem() !== '') return;  // its view was skipped: the next one is full
     ++this.snapshots;

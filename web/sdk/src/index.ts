@@ -15,4 +15,4 @@ export { CorrectionSmoother } from './smoothing.js';
 export type { SmoothingOptions } from './smoothing.js';
 export { readMessage } from './messages.js';
 export * as protocol from '@arena/protocol';
-export type { PlayerLine, GameEvent, ByeFields, WelcomeFields } from './messages.js';
+export type { PlayerLine, GameEvent, ByeFields, WelcomeFields, GameManifest, GameField, GameValue, GameRecord } from './messages.js';
