@@ -179,6 +179,7 @@ std::string client_core::player_name(std::uint32_t player) const {
 void client_core::record_scoreboard() {
     outcome_.scoreboard.clear();
     outcome_.game = manifest();
+    outcome_.tick_rate = session_.welcome().tick_rate;
     const std::size_t fields = outcome_.game.player_fields.size();
     const std::size_t team_fields = outcome_.game.team_fields.size();
     auto values_of = [fields](const declared_values& held) {
@@ -202,6 +203,7 @@ void client_core::record_scoreboard() {
         outcome_.final_scoreboard = true;
         outcome_.winner = result.winner;
         outcome_.winning_team = result.winning_team;
+        outcome_.winners = result.winners;
         return;
     }
     for (const auto& [id, row] : players_) {

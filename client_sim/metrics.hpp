@@ -42,6 +42,8 @@ struct bot_outcome {
     protocol::game_manifest game;
     std::map<std::uint8_t, std::vector<std::int32_t>> teams;
     std::uint8_t winning_team = 0;
+    std::vector<std::uint32_t> winners;  // the Bye's winning players (several on a tie or a team)
+    std::uint16_t tick_rate = 0;         // the Welcome's: a duration field in seconds
 
     // A well-behaved bot must join, keep its session until the run or the server ends it,
     // and never see a protocol error. Misbehaving bots are expected to be dropped and never

@@ -31,9 +31,13 @@ std::string team_name(const protocol::game_manifest& game, std::int32_t team) {
     return team == 0 ? "-" : std::to_string(team);
 }
 
-// A declared value as a scoreboard shows it: a team by its name, anything else as a number.
-std::string shown(const protocol::game_manifest& game, const protocol::game_field& field, std::int32_t value) {
-    return field.kind == protocol::GameFieldKind::team ? team_name(game, value) : std::to_string(value);
+// A declared value as a scoreboard shows it: a team by its name, a duration in seconds, anything
+// else as a number.
+std::string shown(const final_report& r, const protocol::game_field& field, std::int32_t value) {
+    if (field.kind == protocol::GameFieldKind::team) return team_name(r.game, value);
+    if (field.kind == protocol::GameFieldKind::ticks && r.tick_rate > 0)
+        return format("%.1f s", static_cast<double>(value) / r.tick_rate);
+    return std::to_string(value);
 }
 
 // Whether the protocol's own line (score, kills, deaths, shots, hits, lives) already shows every
@@ -54,8 +58,7 @@ void append_declared_scoreboard(std::string& out, const final_report& r) {
     for (const seen_line& l : r.scoreboard) {
         out += format("  %-20s", l.name.c_str());
         for (std::size_t k = 0; k < r.game.player_fields.size(); ++k)
-            out +=
-                format(" %8s", shown(r.game, r.game.player_fields[k], k < l.values.size() ? l.values[k] : 0).c_str());
+            out += format(" %8s", shown(r, r.game.player_fields[k], k < l.values.size() ? l.values[k] : 0).c_str());
         out += "\n";
     }
     if (r.teams.empty()) return;
@@ -93,12 +96,17 @@ nlohmann::json lines_json(const std::vector<seen_line>& lines, const protocol::g
 
 void append_scoreboard(std::string& out, const final_report& r) {
     if (r.scoreboards_seen == 0) return;
-    const auto winner = std::find_if(r.scoreboard.begin(), r.scoreboard.end(),
-                                     [&r](const seen_line& l) { return l.row.player == r.winner; });
+    // The winners by name: the Bye's list (a tie, a team), else its one winner.
+    std::string winners;
+    for (const seen_line& l : r.scoreboard) {
+        const bool won = r.winners.empty()
+                             ? l.row.player == r.winner
+                             : std::find(r.winners.begin(), r.winners.end(), l.row.player) != r.winners.end();
+        if (won) winners += (winners.empty() ? "" : ", ") + l.name;
+    }
     out += format("scoreboard (%s; winner: %s): %u of %u clients saw exactly this one\n",
                   r.scoreboard_final ? "final, from the server's Bye" : "the last lines, no Bye with the result",
-                  winner == r.scoreboard.end() ? "nobody" : winner->name.c_str(), r.scoreboards_agreeing,
-                  r.scoreboards_seen);
+                  winners.empty() ? "nobody" : winners.c_str(), r.scoreboards_agreeing, r.scoreboards_seen);
     if (!line_shows_fields(r.game)) {
         append_declared_scoreboard(out, r);
     } else {
@@ -158,6 +166,8 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
             r.game = o.game;
             r.teams = o.teams;
             r.winning_team = o.winning_team;
+            r.winners = o.winners;
+            r.tick_rate = o.tick_rate;
         }
         if (o.scoreboard == r.scoreboard && o.final_scoreboard == r.scoreboard_final) ++r.scoreboards_agreeing;
         r.scoreboards.push_back(o);

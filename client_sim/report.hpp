@@ -60,6 +60,8 @@ struct final_report {
     protocol::game_manifest game;                             // the game's own fields, teams...
     std::map<std::uint8_t, std::vector<std::int32_t>> teams;  // declared team values, by team
     std::uint8_t winning_team = 0;
+    std::vector<std::uint32_t> winners;
+    std::uint16_t tick_rate = 0;
     std::uint32_t scoreboards_seen = 0;
     std::uint32_t scoreboards_agreeing = 0;
     std::vector<bot_outcome> scoreboards;

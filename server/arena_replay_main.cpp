@@ -81,7 +81,8 @@ int main(int argc, char** argv) {
     if (state) print_state(rp.state());
     if (scoreboard) {
         const std::vector<rules::score_line> lines = rp.game_rules().scoreboard();
-        std::printf("%s\n", config::scoreboard_json(lines, rp.scoreboard_names(lines)).c_str());
+        const protocol::game_manifest game = rp.game_rules().manifest();
+        std::printf("%s\n", config::scoreboard_json(lines, rp.scoreboard_names(lines), &game).c_str());
     }
     // stdout is data when --dump-hashes, --state or --scoreboard asked for some; the summary then goes to stderr.
     print_summary(dump_hashes || state || scoreboard ? stderr : stdout, rp.file_header(), report, seconds);

@@ -70,7 +70,8 @@ void process_host::write_stats_json(const std::string& path) const {
         lines.push_back(s.line);
         names.push_back(s.name);
     }
-    j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names));
+    const protocol::game_manifest game = matches_.default_match().game_rules().manifest();
+    j["scoreboard"] = nlohmann::json::parse(config::scoreboard_json(lines, names, &game));
     // The player the rules declare the winner, as every client's last Bye says (0: nobody).
     j["winner"] = matches_.default_match().game_rules().winner();
     // A team game's teams and scores, and the team winning (0: a draw).

@@ -64,18 +64,18 @@ TEST_CASE("every game makes its rules on its scene with its default parameters",
 
 TEST_CASE("a game this build does not have is refused where it would be played", "[games]") {
     world::world_config c = world::platformer_preset();
-    c.rules = "tag";
+    c.rules = "chess";
     const std::string problem = games::config_problem(c);
-    CHECK(problem == "rules: unknown game 'tag' (" + games::names_list() + ")");
+    CHECK(problem == "rules: unknown game 'chess' (" + games::names_list() + ")");
     world::world w(c, 1);
     CHECK_THROWS_WITH(games::make_rules(w), problem);
 }
 
 TEST_CASE("a config naming a game this build lacks still reads, so a client can draw its bodies", "[games]") {
-    const auto parsed = config::parse_config_json(R"({"preset": "platformer", "rules": "tag"})");
+    const auto parsed = config::parse_config_json(R"({"preset": "platformer", "rules": "chess"})");
     REQUIRE(parsed);
-    CHECK(parsed.value.rules == "tag");
-    CHECK(config::parse_config_json(config::config_to_json(parsed.value)).value.rules == "tag");
+    CHECK(parsed.value.rules == "chess");
+    CHECK(config::parse_config_json(config::config_to_json(parsed.value)).value.rules == "chess");
     for (const char* bad :
          {R"("Tag")", R"("")", R"("1v1")", R"("tag!")", R"(3)", R"("a_name_of_thirty_three_letters_xx")"}) {
         INFO(bad);

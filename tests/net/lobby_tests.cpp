@@ -52,10 +52,10 @@ std::string modes_file() {
 TEST_CASE("the lobby lists, creates and describes matches, and a client joins one by its id", "[net][ws][lobby]") {
     http_server s({"--modes", modes_file(), "--max-matches", "3"});
     const json modes = get_json(s.http_port, "/modes");
-    REQUIRE(modes.size() == 4);  // sandbox, asteroids, soccer, duel
-    CHECK(modes[3]["name"] == "duel");
-    CHECK(modes[3]["capacity"] == 2);
-    CHECK(modes[3]["rules"] == "asteroids");
+    REQUIRE(modes.size() == 5);  // sandbox, asteroids, soccer, tag, duel
+    CHECK(modes[4]["name"] == "duel");
+    CHECK(modes[4]["capacity"] == 2);
+    CHECK(modes[4]["rules"] == "asteroids");
     CHECK(modes[0]["rules"] == "sandbox");
     const json first = get_json(s.http_port, "/matches");
     REQUIRE(first.size() == 1);

@@ -98,7 +98,7 @@ TEST_CASE("arena-server --rules names the game the match plays, and an unknown n
           "[net][cli]") {
     const auto r = server_run("--rules chess --duration 0.2");
     CHECK(r.exit_code == 2);
-    CHECK(r.output == "arena-server: --rules: unknown rules 'chess' (sandbox, asteroids, soccer)\n");
+    CHECK(r.output == "arena-server: --rules: unknown rules 'chess' (sandbox, asteroids, soccer, tag)\n");
     // With the Asteroids rules a player's snapshots carry its scoreboard line: three lives.
     server_process server({"--preset", "asteroids", "--rules", "asteroids"});
     test_client client(server.port());
