@@ -49,6 +49,7 @@ std::optional<behavior_choice> parse_behavior(std::string_view name) {
     if (name == "idle") return behavior_choice::idle;
     if (name == "mixed") return behavior_choice::mixed;
     if (name == "hunter") return behavior_choice::hunter;
+    if (name == "game") return behavior_choice::game;
     return std::nullopt;
 }
 
@@ -64,6 +65,8 @@ std::string_view to_string(behavior_kind kind) {
             return "idle";
         case behavior_kind::hunter:
             return "hunter";
+        case behavior_kind::game:
+            return "game";
     }
     return "unknown";
 }
@@ -80,6 +83,8 @@ behavior_kind resolve_behavior(behavior_choice choice, std::uint32_t index) {
             return behavior_kind::idle;
         case behavior_choice::hunter:
             return behavior_kind::hunter;
+        case behavior_choice::game:
+            return behavior_kind::game;
         case behavior_choice::mixed:
             break;
     }
@@ -112,6 +117,7 @@ player_input behavior::next(const observation& seen) {
         case behavior_kind::random:
             return random_walk();
         case behavior_kind::seek:
+        case behavior_kind::game:  // a game without a bot of its own (client_core plays the one it has)
             return seen.own ? seek(*seen.own) : player_input{};
         case behavior_kind::orbit:
             return seen.own ? orbit(*seen.own) : player_input{};
@@ -127,7 +133,7 @@ player_input behavior::random_walk() {
 
 void behavior::observe(std::span<const protocol::BodyState> bodies, std::uint32_t own_id) {
     if (kind_ == behavior_kind::hunter) observe_prey(bodies, own_id);
-    if (kind_ != behavior_kind::seek) return;
+    if (kind_ != behavior_kind::seek && kind_ != behavior_kind::game) return;
     if (target_id_ != 0) {
         if (const protocol::BodyState* at = protocol::find_body(bodies, target_id_)) {
             target_ = vec2{at->x(), at->y()};

@@ -23,10 +23,11 @@ enum class behavior_kind : std::uint8_t {
     orbit,   // circles a point of its own
     idle,    // zero input: the body only drifts
     hunter,  // Asteroids: turns to the nearest rock or ship, leads it, fires when lined up, shies from rocks
+    game,    // the game's own bot (client_sim/game_bot.hpp), made by its definition; seek when it has none
 };
 
 // The --behavior flag: one kind for every bot, or `mixed`, a kind per bot by its index.
-enum class behavior_choice : std::uint8_t { random, seek, orbit, idle, mixed, hunter };
+enum class behavior_choice : std::uint8_t { random, seek, orbit, idle, mixed, hunter, game };
 
 std::optional<behavior_choice> parse_behavior(std::string_view name);
 std::string_view to_string(behavior_kind kind);

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "client_sim/wire.hpp"
+#include "games/registry.hpp"
 
 namespace arena::bots {
 
@@ -86,6 +87,9 @@ void client_core::after_frame(protocol::Payload handled, std::size_t frame_bytes
 
 void client_core::on_welcome() {
     behavior_.emplace(params_.kind, params_.seed, params_.index, *session_.config());
+    if (params_.kind == behavior_kind::game)
+        if (const rules::game_definition* game = games::find(session_.config()->rules); game && game->make_bot)
+            game_bot_ = game->make_bot(params_.seed, params_.index);
     phase_ = phase::playing;
     outcome_.joined = true;
     shared_.on_joined(session_.welcome());
@@ -171,6 +175,21 @@ void client_core::take_game() {
     }
 }
 
+bots::game_view client_core::seen_by_game_bot() const {
+    bots::game_view seen;
+    seen.own = session_.predicted();
+    seen.bodies = session_.view();
+    seen.player = session_.player_id();
+    seen.config = session_.config();
+    seen.game = &manifest();
+    seen.values = &player_values_;
+    seen.kind_of = [this](std::uint32_t id) -> std::uint8_t {
+        const protocol::shape_desc* shape = session_.shape_of(id);
+        return shape ? shape->kind : 0;
+    };
+    return seen;
+}
+
 std::string client_core::player_name(std::uint32_t player) const {
     const auto it = names_.find(player);
     return it == names_.end() ? std::string() : it->second;
@@ -243,7 +262,7 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
     ++ticks_played_;
     if (params_.mode != misbehavior::none && ticks_played_ > misbehave_after_ticks && misbehave()) return;
     if (session_.send_this_tick())
-        send_input(behavior_->next({session_.predicted()}));
+        send_input(game_bot_ ? game_bot_->next(seen_by_game_bot()) : behavior_->next({session_.predicted()}));
     else
         ++shared_.metrics().inputs_left_out;
     if (phase_ == phase::ended) return;

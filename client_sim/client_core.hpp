@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +24,7 @@
 
 #include "client_sim/behavior.hpp"
 #include "client_sim/client_shared.hpp"
+#include "client_sim/game_bot.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
@@ -145,6 +147,8 @@ private:
     void on_pong(time_ns now);
     // Keeps the lines, names and events the newest snapshot carried.
     void take_game();
+    // What a game's own bot sees now.
+    [[nodiscard]] game_view seen_by_game_bot() const;
     // The scoreboard this client holds, into the outcome (at the end).
     void record_scoreboard();
     // Counts the newest view's bodies this client holds no shape for.
@@ -169,6 +173,7 @@ private:
     std::string close_reason_;
 
     std::optional<behavior> behavior_;                       // from the Welcome
+    std::unique_ptr<game_bot> game_bot_;                     // --behavior game: the game's own, if it has one
     std::map<std::uint32_t, protocol::player_row> players_;  // by player id
     std::map<std::uint32_t, std::string> names_;             // by player id
     std::deque<protocol::game_event> events_;

@@ -21,8 +21,10 @@ int parse_options(int argc, char** argv, options& out) {
     app.add_option("--duration", out.duration, "seconds to run, then say Bye")
         ->check(CLI::Range(0.1, 86400.0))
         ->capture_default_str();
-    app.add_option("--behavior", behavior_name, "random|seek|orbit|idle|hunter|mixed (mixed: by bot index)")
-        ->check(CLI::IsMember({"random", "seek", "orbit", "idle", "hunter", "mixed"}))
+    app.add_option("--behavior", behavior_name,
+                   "random|seek|orbit|idle|hunter|game|mixed (mixed: by bot index; game: the game's own bot, as "
+                   "soccer's, else seek)")
+        ->check(CLI::IsMember({"random", "seek", "orbit", "idle", "hunter", "game", "mixed"}))
         ->capture_default_str();
     app.add_option("--seed", out.seed, "seed of the behaviours (with the bot index)")->capture_default_str();
     app.add_option("--connect-rate", out.connect_rate, "new connections per second (0: all at once)")

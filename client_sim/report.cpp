@@ -87,7 +87,7 @@ nlohmann::json lines_json(const std::vector<seen_line>& lines, const protocol::g
                        {"lives", l.row.lives},
                        {"state", state_name(l.row.state)}});
         // The game's own fields by their names, beside the protocol's (a name they share
-        // holds the same number: Asteroids declares its own score).
+        // is left as the protocol's).
         for (std::size_t k = 0; k < game.player_fields.size() && k < l.values.size(); ++k)
             if (!out.back().contains(game.player_fields[k].name)) out.back()[game.player_fields[k].name] = l.values[k];
     }

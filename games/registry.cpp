@@ -27,6 +27,7 @@ const rules::game_definition sandbox_game{
     .scene_world = nullptr,
     .params_problem = sandbox_params_problem,
     .make = make_sandbox,
+    .make_bot = nullptr,
 };
 
 std::span<const rules::game_definition* const> all() {

@@ -27,6 +27,7 @@ const rules::game_definition asteroids_game{
     .scene_world = nullptr,
     .params_problem = params_problem,
     .make = make,
+    .make_bot = nullptr,
 };
 
 }  // namespace arena::games

@@ -391,22 +391,17 @@ std::vector<score_line> asteroids_rules::scoreboard() const {
         s.lives = p.lives;
         s.out = p.state == ship_state::out;
         s.state = p.state;
-        s.values = {static_cast<int32_t>(s.score), static_cast<int32_t>(s.kills), static_cast<int32_t>(s.deaths),
-                    static_cast<int32_t>(s.shots), static_cast<int32_t>(s.hits),  static_cast<int32_t>(s.lives)};
         lines.push_back(s);
     }
     return lines;
 }
 
 protocol::game_manifest asteroids_rules::manifest() const {
-    using protocol::GameFieldKind;
     protocol::game_manifest m;
     m.name = "asteroids";
-    // In the order scoreboard() fills score_line::values.
-    m.player_fields = {{"score", "Score", GameFieldKind::count},   {"kills", "Kills", GameFieldKind::count},
-                       {"deaths", "Deaths", GameFieldKind::count}, {"shots", "Shots", GameFieldKind::count},
-                       {"hits", "Hits", GameFieldKind::count},     {"lives", "Lives", GameFieldKind::count}};
-    m.rank_field = "score";
+    // No fields of its own: the protocol's PlayerLine is Asteroids' scoreboard (score, kills,
+    // deaths, shots, hits, lives, state), and its GameEvent kinds are Asteroids' events. Declaring
+    // them again would send every change twice.
     m.body_tags = {{kind_ship, "ship", "ship", ""}, {kind_rock, "rock", "", ""}, {kind_bullet, "bullet", "disc", ""}};
     m.inputs = {{"fire", 1, "Space"}, {"boost", 0, "ShiftLeft"}};
     return m;

@@ -49,8 +49,8 @@ public:
     std::span<const game_event> events() const override { return events_; }
     // The highest score; a tie at the top is nobody's win.
     uint32_t winner() const override;
-    // Its scoreboard's fields (score, kills, deaths, shots, hits, lives, ranked by score), its
-    // bodies and its keys; its events stay the protocol's own GameEvent kinds.
+    // Its bodies and its keys; its scoreboard and events are the protocol's own PlayerLine and
+    // GameEvent kinds.
     protocol::game_manifest manifest() const override;
 
     const asteroids_params& params() const { return params_; }

@@ -1,5 +1,6 @@
 // Soccer in the registry (server/rules/game.hpp): played on its own pitch (soccer_pitch.hpp),
 // with the parameters of soccer_params.hpp.
+#include "games/soccer/soccer_bot.hpp"
 #include "games/soccer/soccer_params.hpp"
 #include "games/soccer/soccer_pitch.hpp"
 #include "games/soccer/soccer_rules.hpp"
@@ -28,6 +29,7 @@ const rules::game_definition soccer_game{
     .scene_world = rules::soccer_pitch,
     .params_problem = params_problem,
     .make = make,
+    .make_bot = rules::make_soccer_bot,
 };
 
 }  // namespace arena::games

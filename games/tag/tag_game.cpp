@@ -37,6 +37,7 @@ const rules::game_definition tag_game{
     .scene_world = tag_room,
     .params_problem = no_params,
     .make = make,
+    .make_bot = nullptr,
 };
 
 }  // namespace arena::games

@@ -13,7 +13,7 @@ namespace arena::config {
 // `names[k]` is the name of `lines[k]`'s player; missing names are written as "" (a recording
 // made before names were recorded holds player ids alone). With the game's manifest, each line
 // also holds the game's declared fields by their names ("goals": 2), beside the protocol's own
-// (a name they share holds the same number: Asteroids declares its own score).
+// (a name they share is left as the protocol's).
 std::string scoreboard_json(std::span<const rules::score_line> lines, std::span<const std::string> names = {},
                             const protocol::game_manifest* game = nullptr);
 

@@ -3,6 +3,7 @@
 // how it checks its parameters and how it makes its rules. A game's folder defines one, named
 // `NAME_game` in namespace arena::games (games/asteroids/asteroids_game.cpp); the one line
 // `arena_game(NAME)` in games/CMakeLists.txt puts it in the registry.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -10,6 +11,10 @@
 #include "server/rules/rules.hpp"
 #include "server/world/config.hpp"
 #include "server/world/world.hpp"
+
+namespace arena::bots {
+class game_bot;  // client_sim/game_bot.hpp
+}  // namespace arena::bots
 
 namespace arena::rules {
 
@@ -28,6 +33,8 @@ struct game_definition {
     // The game's rules, set up on `w`: a new world built from a config naming this game, whose
     // parameters params_problem accepted.
     std::unique_ptr<rules> (*make)(world::world& w);
+    // Its own bot (client_sim/game_bot.hpp), for `arena-bots --behavior game`; null: none.
+    std::unique_ptr<bots::game_bot> (*make_bot)(std::uint64_t seed, std::uint32_t index) = nullptr;
 };
 
 }  // namespace arena::rules

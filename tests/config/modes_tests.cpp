@@ -2,14 +2,16 @@
 // one-line errors that name the mode and its field.
 #include <catch2/catch.hpp>
 
+#include "games/registry.hpp"
 #include "server/config/modes.hpp"
 #include "server/world/presets.hpp"
 
 using namespace arena;
 
-TEST_CASE("the built-in modes are sandbox and asteroids, each with its preset's game", "[config][modes]") {
+TEST_CASE("the built-in modes are sandbox and one per game made for a scene, each with its game", "[config][modes]") {
     const auto modes = config::builtin_modes();
-    REQUIRE(config::mode_names(modes) == "sandbox, asteroids, soccer, tag");
+    // Every game of this build has a scene: the modes are the registry's games, in its order.
+    REQUIRE(config::mode_names(modes) == games::names_list());
     CHECK(config::find_mode(modes, "asteroids")->world.rules == "asteroids");
     CHECK(config::find_mode(modes, "sandbox")->world.rules == "sandbox");
     CHECK(config::find_mode(modes, "sandbox")->preset == "platformer");
@@ -30,7 +32,7 @@ TEST_CASE("a modes file adds modes from a preset or a world, and overrides by na
     CHECK(m[1].world.gravity.y() == Approx(-3));
     CHECK(m[1].world.rules == "asteroids");
     const auto merged = config::merge_modes(config::builtin_modes(), m);
-    CHECK(config::mode_names(merged) == "sandbox, asteroids, soccer, tag, duel, floaty");
+    CHECK(config::mode_names(merged) == games::names_list() + ", duel, floaty");
     CHECK(config::find_mode(merged, "sandbox")->preset == "asteroids");  // overridden
 }
 
@@ -44,7 +46,7 @@ TEST_CASE("a bad modes file is refused with the mode and the field", "[config][m
     CHECK(error_of("{") == "not valid JSON");
     CHECK(error_of(R"({"modes": [{"name": "Duel!", "preset": "asteroids"}]})").find("modes[0]: name:") == 0);
     CHECK(error_of(R"({"modes": [{"name": "a", "preset": "nowhere"}]})") ==
-          "modes[0]: preset: unknown preset 'nowhere' (asteroids, platformer, pyramid, soccer, tag)");
+          "modes[0]: preset: unknown preset 'nowhere' (" + games::scene_names_list() + ")");
     CHECK(error_of(R"({"modes": [{"name": "a"}]})") == "modes[0]: needs a preset or a world");
     CHECK(error_of(R"({"modes": [{"name": "a", "preset": "asteroids", "teams": 2}]})") ==
           "modes[0]: unknown field 'teams'");

@@ -85,3 +85,18 @@ TEST_CASE("a config naming a game this build lacks still reads, so a client can 
     }
     CHECK(config::parse_config_json(R"({"rules": "a_name_of_thirty_two_letters_xxx"})"));
 }
+
+TEST_CASE("the scenes are the world's presets, then each game's own, made for that game", "[games]") {
+    const std::string list = games::scene_names_list();
+    CHECK(list.starts_with("asteroids, platformer, pyramid"));
+    for (const rules::game_definition* game : games::all()) {
+        if (game->scene_world == nullptr) continue;
+        INFO(game->name);
+        CHECK(list.find(", " + std::string(game->scene)) != std::string::npos);
+        const auto scene = games::scene_by_name(game->scene);
+        REQUIRE(scene.has_value());
+        CHECK(scene->rules == game->name);
+        CHECK(games::game_for_scene(game->scene) == game->name);
+    }
+    CHECK_FALSE(games::scene_by_name("nowhere").has_value());
+}

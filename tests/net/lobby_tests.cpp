@@ -10,6 +10,7 @@
 
 #include "protocol/decode.hpp"
 #include "protocol/version.hpp"
+#include "server/config/modes.hpp"
 #include "server_process.hpp"
 #include "ws_client.hpp"
 
@@ -52,10 +53,11 @@ std::string modes_file() {
 TEST_CASE("the lobby lists, creates and describes matches, and a client joins one by its id", "[net][ws][lobby]") {
     http_server s({"--modes", modes_file(), "--max-matches", "3"});
     const json modes = get_json(s.http_port, "/modes");
-    REQUIRE(modes.size() == 5);  // sandbox, asteroids, soccer, tag, duel
-    CHECK(modes[4]["name"] == "duel");
-    CHECK(modes[4]["capacity"] == 2);
-    CHECK(modes[4]["rules"] == "asteroids");
+    REQUIRE(modes.size() == config::builtin_modes().size() + 1);  // the built-in ones (a game each), then duel
+    const json& duel_mode = modes.back();
+    CHECK(duel_mode["name"] == "duel");
+    CHECK(duel_mode["capacity"] == 2);
+    CHECK(duel_mode["rules"] == "asteroids");
     CHECK(modes[0]["rules"] == "sandbox");
     const json first = get_json(s.http_port, "/matches");
     REQUIRE(first.size() == 1);

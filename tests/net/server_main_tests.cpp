@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/run_command.hpp"
+#include "games/registry.hpp"
 #include "protocol/decode.hpp"
 #include "protocol/game.hpp"
 #include "protocol/version.hpp"
@@ -98,7 +99,7 @@ TEST_CASE("arena-server --rules names the game the match plays, and an unknown n
           "[net][cli]") {
     const auto r = server_run("--rules chess --duration 0.2");
     CHECK(r.exit_code == 2);
-    CHECK(r.output == "arena-server: --rules: unknown rules 'chess' (sandbox, asteroids, soccer, tag)\n");
+    CHECK(r.output == "arena-server: --rules: unknown rules 'chess' (" + games::names_list() + ")\n");
     // With the Asteroids rules a player's snapshots carry its scoreboard line: three lives.
     server_process server({"--preset", "asteroids", "--rules", "asteroids"});
     test_client client(server.port());

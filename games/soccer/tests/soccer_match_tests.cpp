@@ -8,6 +8,7 @@
 #include <map>
 
 #include "games/registry.hpp"
+#include "games/soccer/soccer_bot.hpp"
 #include "games/soccer/soccer_pitch.hpp"
 #include "games/soccer/soccer_rules.hpp"
 #include "server/config/scoreboard_json.hpp"
@@ -22,15 +23,10 @@ using world::vec2;
 
 namespace {
 
-// Turn towards `target` and run when facing it roughly; kick whenever the ball is in reach.
+// Turn towards `target` and run when facing it roughly (the bot's steering); kick whenever the
+// ball is in reach.
 world::player_input run_to(const world::body& own, const world::body& ball, const vec2& target) {
-    const vec2 way = target - own.position;
-    const world::cos_sin facing = world::compute_cos_sin(own.angle);
-    const real cross = facing.c * way.y() - facing.s * way.x();
-    const real dot = facing.c * way.x() + facing.s * way.y();
-    world::player_input in;
-    in.turn = std::clamp(cross, -1.0f, 1.0f);
-    in.thrust = dot > 0 ? std::min(1.0f, way.norm() / 2) : 0.0f;
+    world::player_input in = rules::run_to(own, target);
     if ((ball.position - own.position).norm() < own.radius + ball.radius + 0.3f) in.buttons = rules::soccer_button_kick;
     return in;
 }
