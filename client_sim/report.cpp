@@ -64,7 +64,8 @@ void append_declared_scoreboard(std::string& out, const final_report& r) {
     if (r.teams.empty()) return;
     out += "teams:";
     for (const auto& [team, values] : r.teams) {
-        out += " " + team_name(r.game, team);
+        out += ' ';
+        out += team_name(r.game, team);
         for (std::size_t k = 0; k < r.game.team_fields.size() && k < values.size(); ++k)
             out += format(" %s %d", r.game.team_fields[k].label.c_str(), values[k]);
         out += ";";
@@ -102,7 +103,9 @@ void append_scoreboard(std::string& out, const final_report& r) {
         const bool won = r.winners.empty()
                              ? l.row.player == r.winner
                              : std::find(r.winners.begin(), r.winners.end(), l.row.player) != r.winners.end();
-        if (won) winners += (winners.empty() ? "" : ", ") + l.name;
+        if (!won) continue;
+        if (!winners.empty()) winners += ", ";
+        winners += l.name;
     }
     out += format("scoreboard (%s; winner: %s): %u of %u clients saw exactly this one\n",
                   r.scoreboard_final ? "final, from the server's Bye" : "the last lines, no Bye with the result",

@@ -36,7 +36,11 @@ struct room {
         throw std::logic_error("no body");
     }
     void step(uint32_t ticks = 1) {
-        for (uint32_t t = 0; t < ticks; ++t) match::apply_tick(w, *game, {.tick = w.tick()});
+        for (uint32_t t = 0; t < ticks; ++t) {
+            match::tick_record record;
+            record.tick = w.tick();
+            match::apply_tick(w, *game, record);
+        }
     }
     // Puts `a` and `b` side by side, touching, far from everything else.
     void touch(uint32_t a, uint32_t b) {
@@ -94,7 +98,8 @@ TEST_CASE("a recorded tag match replays to the same scoreboard and hash", "[tag]
         const auto game = games::make_rules(w);
         uint32_t tags = 0;
         for (uint32_t t = 0; t < 1800; ++t) {
-            match::tick_record record{.tick = w.tick()};
+            match::tick_record record;
+            record.tick = w.tick();
             if (t == 0)
                 for (uint32_t p = 1; p <= 4; ++p) record.joins.push_back(world::player_id{p});
             for (const world::body& b : w.bodies()) {
