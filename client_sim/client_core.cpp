@@ -13,6 +13,22 @@ namespace {
 // A server that stops reading our inputs would make pending_ grow without end.
 constexpr std::size_t max_pending_bytes = 1 << 20;
 
+// `values` into `held` by owner (a player id, or a team number), only fields the manifest has: a
+// value past them, or an owner past Owner's range, is the server's bug and is left out rather
+// than trusted.
+template <class Owner>
+void keep_values(std::map<Owner, client_core::declared_values>& held, std::span<const protocol::game_value> values,
+                 std::size_t fields) {
+    for (const protocol::game_value& v : values)
+        if (v.field < fields && v.owner <= std::numeric_limits<Owner>::max())
+            held[static_cast<Owner>(v.owner)][v.field] = v.value;
+}
+
+// The first `fields` of `held`: a declared line as a scoreboard keeps it.
+std::vector<std::int32_t> first_fields(const client_core::declared_values& held, std::size_t fields) {
+    return std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(fields));
+}
+
 }  // namespace
 
 client_core::client_core(client_shared& shared, client_params params)
@@ -158,14 +174,8 @@ void client_core::take_game() {
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
     }
-    // Declared values: only fields the manifest has (a value past them is the server's bug,
-    // and is left out rather than trusted).
-    const protocol::game_manifest& game_manifest = manifest();
-    for (const protocol::game_value& v : game.player_values)
-        if (v.field < game_manifest.player_fields.size()) player_values_[v.owner][v.field] = v.value;
-    for (const protocol::game_value& v : game.team_values)
-        if (v.field < game_manifest.team_fields.size() && v.owner <= 255)
-            team_values_[static_cast<std::uint8_t>(v.owner)][v.field] = v.value;
+    keep_values(player_values_, game.player_values, manifest().player_fields.size());
+    keep_values(team_values_, game.team_values, manifest().team_fields.size());
     for (const protocol::event_record& r : game.records) {
         if (r.sequence <= last_record_) continue;  // resent until acknowledged: taken once
         last_record_ = r.sequence;
@@ -201,24 +211,17 @@ void client_core::record_scoreboard() {
     outcome_.tick_rate = session_.welcome().tick_rate;
     const std::size_t fields = outcome_.game.player_fields.size();
     const std::size_t team_fields = outcome_.game.team_fields.size();
-    auto values_of = [fields](const declared_values& held) {
-        return std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(fields));
-    };
     const protocol::match_result& result = session_.result();
     if (result.over) {
         // The Bye's own values: the final ones, whatever snapshots were lost before it.
-        std::map<std::uint32_t, declared_values> final_values;
-        for (const protocol::game_value& v : result.player_values)
-            if (v.field < fields) final_values[v.owner][v.field] = v.value;
+        std::map<std::uint32_t, declared_values> final_players;
+        std::map<std::uint8_t, declared_values> final_teams;
+        keep_values(final_players, result.player_values, fields);
+        keep_values(final_teams, result.team_values, team_fields);
         for (std::size_t i = 0; i < result.scoreboard.size(); ++i)
-            outcome_.scoreboard.push_back(
-                {result.names[i], result.scoreboard[i], values_of(final_values[result.scoreboard[i].player])});
-        for (const protocol::game_value& v : result.team_values) {
-            if (v.field >= team_fields || v.owner > 255) continue;
-            auto& team = outcome_.teams[static_cast<std::uint8_t>(v.owner)];
-            team.resize(team_fields);
-            team[v.field] = v.value;
-        }
+            outcome_.scoreboard.push_back({result.names[i], result.scoreboard[i],
+                                           first_fields(final_players[result.scoreboard[i].player], fields)});
+        for (const auto& [team, held] : final_teams) outcome_.teams[team] = first_fields(held, team_fields);
         outcome_.final_scoreboard = true;
         outcome_.winner = result.winner;
         outcome_.winning_team = result.winning_team;
@@ -229,11 +232,9 @@ void client_core::record_scoreboard() {
         const auto held = player_values_.find(id);
         outcome_.scoreboard.push_back(
             {player_name(id), row,
-             held == player_values_.end() ? std::vector<std::int32_t>(fields) : values_of(held->second)});
+             held == player_values_.end() ? std::vector<std::int32_t>(fields) : first_fields(held->second, fields)});
     }
-    for (const auto& [team, held] : team_values_)
-        outcome_.teams[team] =
-            std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(team_fields));
+    for (const auto& [team, held] : team_values_) outcome_.teams[team] = first_fields(held, team_fields);
 }
 
 void client_core::check_shapes(std::span<const protocol::BodyState> bodies) {
