@@ -85,11 +85,7 @@ timed-build: deps $(BUILD)/build.ninja
 # A crash stops the run; its input is saved under build-fuzz/crashes/.
 FUZZ_BUILD ?= build-fuzz
 FUZZ_TARGETS := fuzz_frames fuzz_config fuzz_replay fuzz_delta fuzz_replay_cost fuzz_udp_gate
-ifdef CI
-FUZZ_SECONDS ?= 25
-else
 FUZZ_SECONDS ?= 15
-endif
 fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DARENA_FUZZ=ON -DARENA_SANITIZE=ON -DARENA_WITH_NET=OFF -DARENA_BUILD_BENCH=OFF -DARENA_BUILD_SDK=OFF $(CMAKE_FLAGS) >/dev/null
