@@ -5,8 +5,8 @@ namespace arena::rules {
 namespace {
 
 constexpr uint8_t role_it = 1, role_runner = 2;  // "team" values: the manifest's teams
-constexpr uint8_t kind_player = 1;
-constexpr uint32_t tag_back_ticks = 60;  // one second at 60 Hz
+constexpr uint8_t kind_runner = 1, kind_it = 2;  // body tags: "it" changes hands, and so its tag
+constexpr uint32_t tag_back_ticks = 60;          // one second at 60 Hz
 
 }  // namespace
 
@@ -53,14 +53,22 @@ void tag_rules::after_step(world::world& w) {
 }
 
 void tag_rules::make_it(uint32_t player, uint32_t tick) {
+    // Both bodies change their tag: the clients that hold them get them again (take_retagged).
+    if (const auto old = players_.find(it_); old != players_.end()) retagged_.push_back(old->second.body);
     it_ = player;
+    retagged_.push_back(players_[player].body);
     immune_until_ = tick + tag_back_ticks;
 }
 
 uint8_t tag_rules::kind_of(uint32_t body_id) const {
     for (const auto& [id, p] : players_)
-        if (p.body == body_id) return kind_player;
+        if (p.body == body_id) return id == it_ ? kind_it : kind_runner;
     return 0;
+}
+
+void tag_rules::take_retagged(std::vector<uint32_t>& into) {
+    into.insert(into.end(), retagged_.begin(), retagged_.end());
+    retagged_.clear();
 }
 
 void tag_rules::hash(world::fnv1a& h) const {
@@ -102,7 +110,7 @@ protocol::game_manifest tag_rules::manifest() const {
     m.rank_field = "time_it";
     m.rank_ascending = true;  // the least time as "it" wins
     m.events = {{"tagged", {"player", "other_player"}, "{player} tagged {other_player}"}};
-    m.body_tags = {{kind_player, "player", "ship", "team"}};
+    m.body_tags = {{kind_runner, "runner", "ship", "#50a0ff"}, {kind_it, "it", "ship", "#ff5040"}};
     m.inputs = {{"dash", 0, "ShiftLeft"}};
     return m;
 }

@@ -16,6 +16,7 @@ public:
     void after_step(world::world& w) override;
 
     uint8_t kind_of(uint32_t body_id) const override;
+    void take_retagged(std::vector<uint32_t>& into) override;
     bool has_state() const override { return true; }
     void hash(world::fnv1a& h) const override;
     std::vector<score_line> scoreboard() const override;
@@ -37,6 +38,7 @@ private:
     uint32_t it_ = 0;                     // the player who is "it", 0 = nobody yet
     uint32_t immune_until_ = 0;           // no tag-back before this world tick
     std::vector<declared_event> events_;  // the last after_step's
+    std::vector<uint32_t> retagged_;      // bodies whose tag changed since take_retagged
 };
 
 }  // namespace arena::rules

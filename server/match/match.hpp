@@ -146,7 +146,7 @@ public:
     };
     std::vector<named_score> scoreboard() const;
     // What a body is for drawing (protocol BodyShape.kind: ship, rock...); 0, a plain body,
-    // unless a game's rules tag it. Set it before the body's first snapshot (body_kinds.hpp).
+    // unless a game's rules tag it; a change reaches every client that holds the body (body_kinds.hpp).
     void set_body_kind(uint32_t body_id, uint8_t kind) { kinds_.set(body_id, kind); }
     uint8_t body_kind(uint32_t body_id) const { return kinds_.of(body_id); }
     // The Welcome a player with this id and body would get now (statics included).
@@ -221,7 +221,8 @@ private:
     void expire_disconnected();
     void check_clients();   // admission's rules over time, in connection order
     void send_snapshots();  // to the clients whose snapshot is due this tick
-    // The rules' kind of each body that appeared since the last tick, and a new bullet's origin.
+    // The rules' kind of each body that appeared or was retagged since the last tick, and a new
+    // bullet's origin.
     void tag_new_bodies();
     void record_origin(uint32_t body_id, const rules::shot_record& shot);
     // `r` is a player or a spectator: what it sees is the view around `own`, or with none
@@ -256,6 +257,7 @@ private:
     snapshot_fanout fanout_;
     body_kinds kinds_;
     shot_origins origins_;              // the live bullets' (tag_new_bodies)
+    std::vector<uint32_t> retagged_;    // the bodies the rules retagged this tick
     uint32_t kinds_asked_below_ = 0;    // the rules were asked the kind of every body id below this
     match_counters counters_;           // departed players' buffers folded in on leave
     game_feed game_;                    // lines, names and events for the players (rules with state)

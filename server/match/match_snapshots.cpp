@@ -25,6 +25,9 @@ void match::tag_new_bodies() {
         if (const rules::shot_record* shot = rules_->shot_of(it->id)) record_origin(it->id, *shot);
     }
     if (!bodies.empty()) kinds_asked_below_ = std::max(kinds_asked_below_, bodies.back().id + 1);
+    retagged_.clear();
+    rules_->take_retagged(retagged_);
+    for (const uint32_t id : retagged_) kinds_.set(id, rules_->kind_of(id));
 }
 
 void match::record_origin(uint32_t body_id, const rules::shot_record& shot) {

@@ -33,7 +33,7 @@ std::span<const uint8_t> snapshot_fanout::budgeted_frame(snapshot_client& client
         encoder.encode_chosen(view_, chosen_, base_view, base_held, sent_, held_, delta_bytes_);
         trial_shapes_ = client.shapes;
         shapes_.clear();
-        trial_shapes_.update(tick_, bodies, sent_, sent_ack, false,
+        trial_shapes_.update(tick_, bodies, sent_, sent_ack, false, *kinds_,
                              [&](uint32_t i) { describe_body(shapes_, bodies[i]); });
         frame = protocol::encode_delta_snapshot(fbb_, tick_, ack_sequence, baseline_tick, delta_bytes_, &shapes_, game,
                                                 client.extra_inputs_waiting);

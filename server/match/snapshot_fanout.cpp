@@ -43,11 +43,17 @@ const std::vector<protocol::BodyState>& snapshot_fanout::states() {
 void snapshot_fanout::build_shared() {
     if (!shared_ready_) {
         // Ids are never reused and grow: the bodies new since the last shared frame are those
-        // from its next id on.
+        // from its next id on. Bodies whose kind changed since are described again.
         shared_shapes_.clear();
         const auto bodies = world_->bodies();
+        retagged_.clear();
+        kinds_->changed_after(shared_kinds_revision_, [&](uint32_t id) { retagged_.push_back(id); });
+        shared_kinds_revision_ = kinds_->revision();
+        size_t r = 0;
         for (const world::body& b : bodies) {
-            if (b.id >= shared_next_id_) describe_body(shared_shapes_, b);
+            while (r < retagged_.size() && retagged_[r] < b.id) ++r;
+            const bool retagged = r < retagged_.size() && retagged_[r] == b.id;
+            if (b.id >= shared_next_id_ || retagged) describe_body(shared_shapes_, b);
         }
         shared_.build(tick_, states(), &shared_shapes_, shared_game_);
         shared_base_tick_ = last_shared_tick_;
@@ -69,7 +75,8 @@ const protocol::snapshot_encoder* snapshot_fanout::shared_frame(snapshot_client&
 void snapshot_fanout::describe_view(snapshot_client& client, uint32_t acked, bool reliable) {
     shapes_.clear();
     const auto bodies = world_->bodies();
-    client.shapes.update(tick_, bodies, view_, acked, reliable, [&](uint32_t i) { describe_body(shapes_, bodies[i]); });
+    client.shapes.update(tick_, bodies, view_, acked, reliable, *kinds_,
+                         [&](uint32_t i) { describe_body(shapes_, bodies[i]); });
     count_shapes(shapes_);
 }
 

@@ -161,6 +161,8 @@ private:
     uint32_t last_shared_tick_ = 0;       // the tick of the newest shared frame
     uint32_t shared_base_tick_ = 0;       // the shared frame's predecessor: its clients can use it
     uint32_t shared_next_id_ = 0;         // bodies from this id on are new since the last shared frame
+    uint64_t shared_kinds_revision_ = 0;  // the kinds as the last shared frame described them
+    std::vector<uint32_t> retagged_;      // bodies whose kind changed since, by id
     flatbuffers::FlatBufferBuilder fbb_{1024};
     // budgeted_frame()'s scratch
     std::vector<uint8_t> chosen_;

@@ -96,8 +96,13 @@ public:
     // rules: the body the match spawned stays the player's).
     virtual uint32_t body_of(uint32_t /*player*/) const { return 0; }
     // What body `id` is, for drawing (protocol BodyShape.kind: the game defines the values);
-    // 0 = a plain body. The match asks once, in the tick the body appears.
+    // 0 = a plain body. The match asks in the tick the body appears, and again after any step
+    // that lists the body in take_retagged().
     virtual uint8_t kind_of(uint32_t /*body_id*/) const { return 0; }
+    // Appends to `into` the bodies whose kind_of changed since the last call, and forgets them
+    // (derived from the state: not hashed). The match calls it once a tick, after the step;
+    // clients that hold such a body's shape get it again with its new kind.
+    virtual void take_retagged(std::vector<uint32_t>& /*into*/) {}
     // How much a body of `kind` matters to a player when a snapshot cannot hold every body in
     // view (server/match/snapshot_priority.hpp): 1 (it moves predictably, as a drifting rock) to
     // 4 (another player's body). Plain bodies are 2.

@@ -62,6 +62,7 @@ struct session_stats {
     uint64_t decoded = 0;
     uint64_t shapes = 0;          // shapes described by the snapshots that arrived
     uint64_t shapes_checked = 0;  // bodies of decoded views whose shape the client held
+    uint64_t retags = 0;          // kinds the game changed during the session
 };
 
 // A client keeps the shapes each snapshot that arrives describes (protocol/README.md,
@@ -209,6 +210,16 @@ void send_input(sim_client& c, match::match& g, world::rng& rng) {
     c.acked = in.snapshot_ack;
 }
 
+// The game retags a body now and then (a rock becomes another kind): every client holding it
+// must get its shape again with the new kind.
+void retag_one(match::match& g, world::rng& rng, session_stats& stats) {
+    const auto bodies = g.state().bodies();
+    const world::body& b = bodies[below(rng, static_cast<uint32_t>(bodies.size()))];
+    if (b.is_static()) return;
+    g.set_body_kind(b.id, static_cast<uint8_t>(1 + (g.body_kind(b.id) + below(rng, 2)) % 3));
+    ++stats.retags;
+}
+
 }  // namespace
 
 TEST_CASE("every snapshot of a long lossy session decodes to exactly the client's view", "[match][delta]") {
@@ -223,6 +234,7 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
 
     for (uint32_t t = 0; t < 6000; ++t) {
         churn(slots, g, rng, next_identity);
+        if (one_in(rng, 10)) retag_one(g, rng, stats);
         g.tick();
         for (slot& s : slots) {
             if (s.client) observe(*s.client, g, rng, stats);
@@ -240,11 +252,12 @@ TEST_CASE("every snapshot of a long lossy session decodes to exactly the client'
     INFO("delta " << stats.delta_frames << ", keyframes " << stats.keyframes << " (" << stats.keyframes_despite_ack
                   << " despite an ack), older baselines " << stats.older_baselines << ", lost " << stats.lost
                   << ", decoded " << stats.decoded << ", BodyState " << stats.full_frames << ", shapes " << stats.shapes
-                  << ", bodies checked " << stats.shapes_checked);
+                  << ", bodies checked " << stats.shapes_checked << ", retags " << stats.retags);
     const match::match_counters counters = g.counters();
     // Shapes: described far less often than the bodies they serve, and always held in time.
     CHECK(stats.shapes > 0);
     CHECK(stats.shapes_checked > 10 * stats.shapes);
+    CHECK(stats.retags > 300);  // and every decoded view held each retagged body's new kind
     CHECK(counters.snapshots.shapes_sent >= stats.shapes);
     CHECK(counters.snapshots.delta_frames == stats.delta_frames);
     CHECK(counters.snapshots.keyframes == stats.keyframes);

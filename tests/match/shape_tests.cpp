@@ -34,11 +34,12 @@ std::vector<world::body> bodies_with_ids(std::initializer_list<uint32_t> ids,
     return out;
 }
 
-// The ids one update describes.
+// The ids one update describes, with the bodies' kinds in `kinds`.
 std::vector<uint32_t> described(match::shape_tracker& t, uint32_t tick, const std::vector<world::body>& bodies,
-                                std::vector<uint32_t> view, uint32_t acked, bool reliable = false) {
+                                std::vector<uint32_t> view, uint32_t acked, bool reliable = false,
+                                const match::body_kinds& kinds = {}) {
     std::vector<uint32_t> ids;
-    t.update(tick, bodies, view, acked, reliable, [&](uint32_t i) { ids.push_back(bodies[i].id); });
+    t.update(tick, bodies, view, acked, reliable, kinds, [&](uint32_t i) { ids.push_back(bodies[i].id); });
     return ids;
 }
 
@@ -64,6 +65,36 @@ TEST_CASE("a shape is described in every snapshot until one that carried it is a
     CHECK(described(t, 21, bodies, {0, 1, 2}, 15).empty());
     CHECK(t.known() == 3);
     CHECK(t.pending() == 0);
+}
+
+TEST_CASE("a body whose kind changes is described again until a snapshot with its new kind is acknowledged",
+          "[match][shapes]") {
+    const auto bodies = bodies_with_ids({4, 7, 9});
+    match::body_kinds kinds;
+    kinds.set(7, 1);
+    match::shape_tracker t;
+    t.welcomed(1);
+    CHECK(described(t, 3, bodies, {0, 1, 2}, 0, false, kinds) == ids{4, 7, 9});
+    CHECK(described(t, 6, bodies, {0, 1, 2}, 3, false, kinds).empty());  // all held
+    kinds.set(7, 2);                                                     // "it" changes hands
+    kinds.set(9, 2);
+    CHECK(described(t, 9, bodies, {0, 1, 2}, 6, false, kinds) == ids{7, 9});
+    kinds.set(9, 0);  // and again before the client had the first change: 9 from its new start
+    CHECK(described(t, 12, bodies, {0, 1, 2}, 6, false, kinds) == ids{7, 9});
+    CHECK(described(t, 15, bodies, {0, 1, 2}, 9, false, kinds) == ids{9});  // 9 carried 7's new kind
+    CHECK(described(t, 18, bodies, {0, 1, 2}, 12, false, kinds).empty());
+    CHECK(t.known() == 3);
+    kinds.set(4, 3);  // an unchanged kind costs nothing; a changed one counts
+    const uint64_t revision = kinds.revision();
+    kinds.set(4, 3);
+    CHECK(kinds.revision() == revision);
+    // A reliable stream holds the new kind once it is sent.
+    match::shape_tracker r;
+    r.welcomed(1);
+    CHECK(described(r, 3, bodies, {0, 1, 2}, 0, true, kinds) == ids{4, 7, 9});
+    kinds.set(4, 1);
+    CHECK(described(r, 6, bodies, {0, 1, 2}, 0, true, kinds) == ids{4});
+    CHECK(described(r, 9, bodies, {0, 1, 2}, 0, true, kinds).empty());
 }
 
 TEST_CASE("a reliable stream describes each shape once per stay in the view", "[match][shapes]") {

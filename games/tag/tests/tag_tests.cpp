@@ -63,6 +63,28 @@ TEST_CASE("the first player is it, and time as it counts a tick at a time", "[ta
     CHECK(r.game->scoreboard()[1].values[0] == 2);  // role: runner
 }
 
+TEST_CASE("passing it on retags both bodies, so that clients draw the new it", "[tag]") {
+    room r(2);
+    std::vector<uint32_t> retagged;
+    r.game->take_retagged(retagged);  // the first "it", at the join
+    const uint32_t first = r.body_of(1).id, second = r.body_of(2).id;
+    CHECK(r.game->kind_of(first) == 2);   // it
+    CHECK(r.game->kind_of(second) == 1);  // a runner
+    retagged.clear();
+    r.step(60);
+    r.game->take_retagged(retagged);
+    CHECK(retagged.empty());  // nothing changed hands
+    r.touch(1, 2);
+    r.step();
+    r.game->take_retagged(retagged);
+    CHECK(retagged == std::vector<uint32_t>{first, second});
+    CHECK(r.game->kind_of(first) == 1);
+    CHECK(r.game->kind_of(second) == 2);
+    retagged.clear();
+    r.game->take_retagged(retagged);
+    CHECK(retagged.empty());  // taken once
+}
+
 TEST_CASE("a touch passes it on, told as an event, with no tag-back for a second", "[tag]") {
     room r(2);
     r.step(60);  // past the first player's second of grace
