@@ -11,6 +11,7 @@ namespace arena::rules {
 
 struct soccer_params {
     uint32_t match_seconds = 180;       // the match clock; the match ends when it runs out
+    uint32_t periods = 2;               // the clock's equal parts (halves); a kick-off starts each
     world::real kick_impulse = 5.0f;    // N·s, J: the ball's Δv = J/m (11 m/s for 0.45 kg)
     world::real kick_reach = 0.3f;      // m between the kicker's edge and the ball's
     uint32_t kick_cooldown_ticks = 12;  // 0.2 s at 60 Hz

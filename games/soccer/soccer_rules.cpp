@@ -28,6 +28,7 @@ soccer_rules::soccer_rules(world::world& w, const soccer_params& params) : param
         }
     }
     const double ticks = std::ceil(static_cast<double>(params_.match_seconds) / static_cast<double>(w.config().dt));
+    start_tick_ = w.tick();
     final_tick_ = w.tick() + static_cast<uint32_t>(std::min(ticks, 4.0e9));
     w.set_contact_events(true);
 }
@@ -54,6 +55,7 @@ void soccer_rules::on_leaves(world::world&, std::span<const uint32_t> bodies) {
 }
 
 void soccer_rules::before_step(world::world& w, const world::tick_inputs& inputs) {
+    events_.clear();  // here, not in after_step: a kick-off happens before the step
     if (finished_) return;
     if (kickoff_at_ != 0 && w.tick() >= kickoff_at_) kick_off(w);
     // In body id order, whatever order the inputs come in: two players kicking in one tick
@@ -95,7 +97,6 @@ void soccer_rules::roll_ball(world::world& w) const {
 }
 
 void soccer_rules::after_step(world::world& w) {
-    events_.clear();
     if (finished_) return;
     for (const world::contact_event& e : w.contact_events()) {
         if (e.a != ball_ && e.b != ball_) continue;
@@ -105,7 +106,18 @@ void soccer_rules::after_step(world::world& w) {
     if (w.tick() >= final_tick_) {
         finished_ = true;
         events_.push_back({static_cast<uint8_t>(soccer_event::full_time), {winning_team()}});
+    } else if (w.tick() >= period_end_tick()) {
+        // The next period starts with a kick-off, like play after a goal.
+        events_.push_back({static_cast<uint8_t>(soccer_event::period_end), {static_cast<int32_t>(period_)}});
+        period_ += 1;
+        kickoff_at_ = w.tick() + std::max<uint32_t>(params_.kickoff_ticks, 1);
     }
+}
+
+uint32_t soccer_rules::period_end_tick() const {
+    // Whole ticks, the last period ending exactly with the clock.
+    const uint64_t length = final_tick_ - start_tick_;
+    return start_tick_ + static_cast<uint32_t>(length * period_ / params_.periods);
 }
 
 void soccer_rules::check_goal(world::world& w) {
@@ -177,6 +189,8 @@ void soccer_rules::hash(world::fnv1a& h) const {
     h.add_u32(last_touch_);
     h.add_u32(kickoff_at_);
     h.add_u8(finished_ ? 1 : 0);
+    h.add_u32(start_tick_);
+    h.add_u32(period_);
     h.add_u32(static_cast<uint32_t>(players_.size()));
     for (const auto& [id, p] : players_) {
         h.add_u32(id);
@@ -227,7 +241,8 @@ protocol::game_manifest soccer_rules::manifest() const {
     m.events = {{"goal", {"player", "team"}, "{player} scores for {team}"},
                 {"own_goal", {"player", "team"}, "own goal by {player}: a goal for {team}"},
                 {"kickoff", {}, "kick-off"},
-                {"full_time", {"team"}, "full time: {team}"}};
+                {"full_time", {"team"}, "full time: {team}"},
+                {"period_end", {"period"}, "end of period {period}"}};
     m.body_tags = {{kind_player, "player", "ship", "team"}, {kind_ball, "ball", "disc", "#ffffff"}};
     m.inputs = {{"kick", 1, "Space"}, {"dash", 0, "ShiftLeft"}};
     return m;

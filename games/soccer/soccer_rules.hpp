@@ -11,7 +11,8 @@
 //   After kickoff_ticks, the kick-off: the ball on the centre spot at rest, every player back in
 //   its half, facing the other goal.
 // - The match clock: after match_seconds the match is over; the team with more goals wins, or
-//   it is a draw.
+//   it is a draw. The clock runs in `periods` equal parts (two halves by default): the end of
+//   each but the last is told as an event and followed by a kick-off (the teams keep their ends).
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -28,7 +29,7 @@ inline constexpr uint8_t team_blue = 2;
 inline constexpr uint8_t kind_player = 1;
 inline constexpr uint8_t kind_ball = 4;
 // Its events (manifest().events, in this order).
-enum class soccer_event : uint8_t { goal, own_goal, kickoff, full_time };
+enum class soccer_event : uint8_t { goal, own_goal, kickoff, full_time, period_end };
 
 class soccer_rules : public rules {
 public:
@@ -59,6 +60,9 @@ public:
     uint32_t score(uint8_t team) const { return team == team_red ? goals_red_ : goals_blue_; }
     // The world tick at which the clock runs out.
     uint32_t final_tick() const { return final_tick_; }
+    // The period being played, 1 to params().periods, and the world tick at which it ends.
+    uint32_t period() const { return period_; }
+    uint32_t period_end_tick() const;
     // True between a goal and its kick-off.
     bool awaiting_kickoff() const { return kickoff_at_ != 0; }
     const soccer_params& params() const { return params_; }
@@ -82,7 +86,9 @@ private:
 
     soccer_params params_;
     uint32_t ball_ = 0;
-    uint32_t final_tick_ = 0;
+    uint32_t start_tick_ = 0;  // the clock starts
+    uint32_t final_tick_ = 0;  // and runs out
+    uint32_t period_ = 1;
     std::map<uint32_t, player> players_;  // by player id
     uint32_t goals_red_ = 0, goals_blue_ = 0;
     uint32_t last_touch_ = 0;  // player id, 0 = nobody since the kick-off

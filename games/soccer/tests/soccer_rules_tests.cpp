@@ -179,6 +179,38 @@ TEST_CASE("the clock ends the match, and equal scores are a draw", "[soccer][clo
     CHECK(m.game->winner() == 0);
 }
 
+TEST_CASE("the clock runs in periods, each after the first starting with a kick-off", "[soccer][clock]") {
+    world::world_config c = rules::soccer_pitch();
+    c.rules_params = R"({"match_seconds":3,"periods":3,"kickoff_ticks":10})";
+    pitch_match m(2, c);
+    CHECK(m.soccer().period() == 1);
+    CHECK(m.soccer().period_end_tick() == 60);
+    m.ball().velocity = {0, 3};  // in play, away from the goals
+    auto event_names = [&] {
+        std::vector<std::string> names;
+        const protocol::game_manifest manifest = m.game->manifest();
+        for (const rules::declared_event& e : m.game->declared_events()) names.push_back(manifest.events[e.kind].name);
+        return names;
+    };
+    while (m.w.tick() < 59) m.step();
+    CHECK(event_names().empty());
+    m.step();  // the first period's last tick
+    CHECK(event_names() == std::vector<std::string>{"period_end"});
+    CHECK(m.game->declared_events()[0].values[0] == 1);
+    CHECK(m.soccer().period() == 2);
+    CHECK(m.soccer().awaiting_kickoff());
+    while (m.soccer().awaiting_kickoff()) m.step();
+    CHECK(event_names() == std::vector<std::string>{"kickoff"});
+    CHECK(m.ball().position == rules::pitch.centre());
+    CHECK(m.ball().velocity == world::vec2{0, 0});
+    while (m.w.tick() < 120) m.step();
+    CHECK(m.soccer().period() == 3);
+    while (!m.game->finished()) m.step();
+    CHECK(m.w.tick() == 180);
+    CHECK(event_names() == std::vector<std::string>{"full_time"});
+    CHECK(m.soccer().period() == 3);  // the last period ends with the clock, not with a kick-off
+}
+
 TEST_CASE("soccer's parameters are checked field by field", "[soccer][params]") {
     CHECK(games::config_problem(rules::soccer_pitch()).empty());
     auto problem = [](const char* params) {
@@ -189,6 +221,7 @@ TEST_CASE("soccer's parameters are checked field by field", "[soccer][params]") 
     CHECK(problem(R"({"kick_impulse":0})") == "rules_params.kick_impulse must be a number in (0, 1000]");
     CHECK(problem(R"({"match_seconds":-5})") == "rules_params.match_seconds must be a whole number in [1, 86400]");
     CHECK(problem(R"({"offside":true})") == "unknown field rules_params.offside");
+    CHECK(problem(R"({"periods":0})") == "rules_params.periods must be a whole number in [1, 16]");
     CHECK(problem(R"({"ball_friction":0.2,"kickoff_ticks":30})").empty());
     const auto p = rules::parse_soccer_params(R"({"ball_friction":0.2})");
     REQUIRE(p.ok());
