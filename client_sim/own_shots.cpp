@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "games/registry.hpp"
 #include "protocol/decode.hpp"
 #include "server/world/broadphase.hpp"
 
@@ -20,28 +21,25 @@ bool same_bits(const world::vec2& a, float x, float y) {
 
 }  // namespace
 
-own_shots::own_shots(const world::world_config& config, std::uint32_t player_id)
-    : enabled_(config.rules == "asteroids"), player_id_(player_id) {
-    // The server's parameters, from the Welcome's world config: it refused any it could not read.
-    const auto params = rules::parse_asteroids_params(config.rules_params);
-    if (params) {
-        params_ = params.value;
-    } else {
-        enabled_ = false;  // nothing to predict by: the server's shots are shown as they come
-    }
+own_shots::own_shots(const world::world_config& config, std::uint32_t player_id) : player_id_(player_id) {
+    // The server's parameters, from the Welcome's world config. A game this build does not
+    // know, or parameters it cannot read: nothing to predict by, the server's shots are shown
+    // as they come.
+    const rules::game_definition* game = games::find(config.rules);
+    if (game != nullptr && game->make_shot_rule != nullptr) rule_ = game->make_shot_rule(config.rules_params);
 }
 
 std::optional<predicted_shot> own_shots::fire(gun& g, std::uint32_t sequence, const world::player_input& input,
                                               world::body& ship) const {
-    if (!enabled_ || (input.buttons & rules::button_fire) == 0) return std::nullopt;
+    if (!rule_ || (input.buttons & rule_->fire_buttons()) == 0) return std::nullopt;
     // The server removes a bullet fired in tick T after the step into T + lifetime: the input
     // of that tick no longer counts it.
-    std::erase_if(g.live, [&](std::uint32_t fired) { return sequence - fired >= params_.bullet_lifetime_ticks; });
-    if (!rules::may_fire(sequence, g.next_fire, static_cast<std::uint32_t>(g.live.size()), params_))
-        return std::nullopt;
-    const rules::shot s = rules::make_shot(ship, player_id_, params_);
+    const std::uint32_t lifetime = rule_->lifetime_ticks();
+    std::erase_if(g.live, [&](std::uint32_t fired) { return sequence - fired >= lifetime; });
+    if (!rule_->may_fire(sequence, g.next_fire, static_cast<std::uint32_t>(g.live.size()))) return std::nullopt;
+    const rules::fired_shot s = rule_->fire(ship, player_id_);
     ship.apply_impulse(s.recoil);
-    g.next_fire = sequence + params_.fire_cooldown_ticks;
+    g.next_fire = sequence + rule_->cooldown_ticks();
     g.live.push_back(sequence);
     return predicted_shot{sequence, s.bullet.position, s.bullet.velocity};
 }
@@ -55,7 +53,7 @@ own_shots::gun own_shots::on_snapshot(std::uint32_t tick, std::uint32_t ack,
                                       std::span<const protocol::BodyState> view, const world::world_config& config,
                                       std::vector<float>& errors) {
     gun g;
-    if (!enabled_) return g;
+    if (!rule_) return g;
     // Input `ack` was the last the world took, by `tick`; the inputs after it go one a tick.
     const std::int64_t tick_of_ack = static_cast<std::int64_t>(tick) - static_cast<std::int64_t>(ack);
     const auto tick_of = [&](std::uint32_t sequence) {
@@ -94,7 +92,7 @@ own_shots::gun own_shots::on_snapshot(std::uint32_t tick, std::uint32_t ack,
         std::erase_if(waiting_, [ack](const predicted_shot& p) { return p.sequence <= ack; }));
     // A confirmed bullet no longer in view is gone: it hit something, or its lifetime ended.
     std::erase_if(confirmed_, [&](const confirmed_shot& c) { return protocol::find_body(view, c.body_id) == nullptr; });
-    if (last_confirmed_) g.next_fire = sequence_at(last_confirmed_tick_ + params_.fire_cooldown_ticks);
+    if (last_confirmed_) g.next_fire = sequence_at(last_confirmed_tick_ + rule_->cooldown_ticks());
     for (const confirmed_shot& c : confirmed_) g.live.push_back(sequence_at(c.tick));
     return g;
 }

@@ -1,7 +1,8 @@
 #pragma once
-// The player's own shots (Asteroids), predicted as the ship is: when an input with the fire
-// button is stepped, the client decides with the rules' own code (games/asteroids/asteroids_
-// shot.hpp) whether the ship may fire, spawns the bullet and gives the ship its recoil. Each
+// The player's own shots, predicted as the ship is: when an input with a fire button is
+// stepped, the client decides with the game's own fire rule (server/rules/shot_rule.hpp, from
+// the game's definition: Asteroids' is games/asteroids/asteroids_shot.hpp) whether the ship may
+// fire, spawns the bullet and gives the ship its recoil. Each
 // predicted shot waits for the server's bullet from the same input (protocol ShotOrigin,
 // matched by input sequence) and is then replaced by it: exactly when the two spawns are bit
 // for bit equal, with an error (m) otherwise. A shot still unmatched once a snapshot
@@ -18,12 +19,13 @@
 // acknowledgement: without it, one late input put every later shot's cooldown and every
 // bullet's lifetime a tick off until the bullet was gone.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
-#include "games/asteroids/asteroids_shot.hpp"
 #include "protocol/arena_generated.h"
+#include "server/rules/shot_rule.hpp"
 #include "server/world/config.hpp"
 #include "server/world/input.hpp"
 
@@ -46,7 +48,8 @@ struct shot_counts {
 
 class own_shots {
 public:
-    // Predicts nothing unless `config` plays Asteroids.
+    // Predicts nothing unless `config` plays a game whose definition has a fire rule for its
+    // rules_params.
     own_shots(const world::world_config& config, std::uint32_t player_id);
 
     // The gun: the cooldown's end and the live bullets' firing inputs.
@@ -79,18 +82,18 @@ public:
                     std::span<const protocol::BodyState> view, const world::world_config& config,
                     std::vector<float>& errors);
 
-    [[nodiscard]] bool enabled() const { return enabled_; }
+    [[nodiscard]] bool enabled() const { return rule_ != nullptr; }
     [[nodiscard]] const shot_counts& counts() const { return counts_; }
     // Predicted shots the server has not confirmed yet, oldest first.
     [[nodiscard]] std::span<const predicted_shot> waiting() const { return waiting_; }
     // Confirmed bullets still in the newest view, by the order they were confirmed.
     [[nodiscard]] std::span<const confirmed_shot> confirmed() const { return confirmed_; }
-    [[nodiscard]] const rules::asteroids_params& params() const { return params_; }
+    // The fire rule, with the server's parameters (its config's rules_params); null: disabled.
+    [[nodiscard]] const rules::shot_rule* rule() const { return rule_.get(); }
 
 private:
-    bool enabled_;
+    std::unique_ptr<rules::shot_rule> rule_;
     std::uint32_t player_id_;
-    rules::asteroids_params params_;  // the server's: its config's rules_params
     std::vector<predicted_shot> waiting_;
     std::vector<confirmed_shot> confirmed_;        // the server's bullets of ours, seen alive in the last view
     std::optional<std::uint32_t> last_confirmed_;  // the newest confirmed shot's input

@@ -2,6 +2,7 @@
 // parameters of asteroids_params.hpp.
 #include "games/asteroids/asteroids_params.hpp"
 #include "games/asteroids/asteroids_rules.hpp"
+#include "games/asteroids/asteroids_shot.hpp"
 #include "server/rules/game.hpp"
 
 namespace arena::games {
@@ -17,6 +18,12 @@ std::unique_ptr<rules::rules> make(world::world& w) {
     return std::make_unique<rules::asteroids_rules>(w, params.value);
 }
 
+std::unique_ptr<rules::shot_rule> make_shot_rule(std::string_view rules_params) {
+    const auto params = rules::parse_asteroids_params(rules_params);
+    if (!params) return nullptr;
+    return std::make_unique<rules::asteroids_shot_rule>(params.value);
+}
+
 }  // namespace
 
 extern const rules::game_definition asteroids_game;
@@ -28,6 +35,7 @@ const rules::game_definition asteroids_game{
     .params_problem = params_problem,
     .make = make,
     .make_bot = nullptr,
+    .make_shot_rule = make_shot_rule,
 };
 
 }  // namespace arena::games

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "server/rules/rules.hpp"
+#include "server/rules/shot_rule.hpp"
 #include "server/world/config.hpp"
 #include "server/world/world.hpp"
 
@@ -35,6 +36,10 @@ struct game_definition {
     std::unique_ptr<rules> (*make)(world::world& w);
     // Its own bot (client_sim/game_bot.hpp), for `arena-bots --behavior game`; null: none.
     std::unique_ptr<bots::game_bot> (*make_bot)(std::uint64_t seed, std::uint32_t index) = nullptr;
+    // Its fire rule for the `rules_params` of a world (server/rules/shot_rule.hpp), which clients
+    // run to predict their own shots; null when the game's players fire nothing to predict, or
+    // when those parameters do not read (then the server's shots are shown as they come).
+    std::unique_ptr<shot_rule> (*make_shot_rule)(std::string_view rules_params) = nullptr;
 };
 
 }  // namespace arena::rules

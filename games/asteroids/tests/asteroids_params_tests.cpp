@@ -114,8 +114,11 @@ TEST_CASE("a client predicts its own shots with the server's parameters", "[rule
     const world::world_config c = asteroids_with(R"({"fire_cooldown_ticks": 30, "bullet_impulse": 3})");
     const bots::own_shots shots(c, 1);
     CHECK(shots.enabled());
-    CHECK(shots.params().fire_cooldown_ticks == 30);
-    CHECK(shots.params().bullet_impulse == 3.0f);
+    const auto* rule = dynamic_cast<const rules::asteroids_shot_rule*>(shots.rule());
+    REQUIRE(rule != nullptr);
+    CHECK(rule->params().fire_cooldown_ticks == 30);
+    CHECK(rule->params().bullet_impulse == 3.0f);
+    CHECK(rule->cooldown_ticks() == 30);
     world::world_config unreadable = c;
     unreadable.rules_params = R"({"lives": -4})";
     CHECK_FALSE(bots::own_shots(unreadable, 1).enabled());  // no numbers to predict by
