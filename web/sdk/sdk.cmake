@@ -100,7 +100,19 @@ add_custom_command(
   DEPENDS arena-sdk-record-session
   COMMENT "Recording a match session for the SDK tests"
   VERBATIM)
-add_custom_target(arena_sdk_fixtures ALL DEPENDS ${session_fixture})
+# A short soccer match recorded as arena-server records one, for the replay player's game tests
+# (its manifest, scoreboard with names, teams, events and result; web/page's replay test too).
+add_executable(arena-sdk-record-soccer fixtures/record_soccer.cpp)
+target_link_libraries(arena-sdk-record-soccer PRIVATE arena_replay arena_config arena_games)
+set(soccer_fixture ${sdk_dir}/fixtures/soccer.arpl)
+add_custom_command(
+  OUTPUT ${soccer_fixture}
+  COMMAND ${CMAKE_COMMAND} -E make_directory ${sdk_dir}/fixtures
+  COMMAND arena-sdk-record-soccer ${soccer_fixture}
+  DEPENDS arena-sdk-record-soccer
+  COMMENT "Recording a soccer match for the replay player's tests"
+  VERBATIM)
+add_custom_target(arena_sdk_fixtures ALL DEPENDS ${session_fixture} ${soccer_fixture})
 
 # 5. The tests. The names start with "sdk" (ctest -R sdk).
 file(GLOB sdk_tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*.test.mjs)

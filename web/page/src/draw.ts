@@ -1,8 +1,12 @@
 // Draws one frame of the game on a 2D canvas: every body by its game kind and its shape (the
 // vertices the server sent, in the body's frame), centred on the own ship, y up, and the short
-// way round a wrapping world so that bodies across the seam show beside the ship.
+// way round a wrapping world so that bodies across the seam show beside the ship. A game's page
+// module (game_page.ts), if it has one, draws under the bodies and over them.
+import type { GamePage, GameView, WorldConfig } from './game_page.js';
 
 export interface Shape {
+  /** The body's id (the SDK's; a static's is its body's). */
+  id?: number;
   kind: number;
   type: number; // circle 0, capsule 1, polygon 2, segment 3
   radius: number;
@@ -64,6 +68,11 @@ export class Painter {
   private player = 0;
   private tags: Map<number, Tag> | null = null;
   private ownerColour: (owner: number) => string | null = () => null;
+  private gamePage: GamePage | null = null;
+  private gameConfig: WorldConfig = {};
+  private gameManifest: GameView['game'] = null;
+  /** Frames the game's page module drew (either call), for tests and the console. */
+  gamePageFrames = 0;
 
   constructor(private readonly canvas: HTMLCanvasElement) {
     const g = canvas.getContext('2d');
@@ -75,6 +84,13 @@ export class Painter {
   setTags(tags: Tag[] | null, ownerColour: (owner: number) => string | null): void {
     this.tags = tags ? new Map(tags.map((t) => [t.kind, t])) : null;
     this.ownerColour = ownerColour;
+  }
+
+  /** The game's page module and what it draws from (null: none, every body from its tag). */
+  setGamePage(page: GamePage | null, config: WorldConfig, game: GameView['game']): void {
+    this.gamePage = page;
+    this.gameConfig = config;
+    this.gameManifest = game;
   }
 
   /** `player`: the own player's id; its ship is drawn in gold, predicted or not. `span`: metres
@@ -98,9 +114,39 @@ export class Painter {
     g.fillStyle = '#05070d';
     g.fillRect(0, 0, w, h);
     this.grid(w, h);
+    const view: GameView | null = this.gamePage && {
+      config: this.gameConfig,
+      world,
+      game: this.gameManifest,
+      scale: this.scale,
+      toScreen: (x: number, y: number) => this.toScreen(x, y),
+      now,
+    };
+    const drewBackground = view !== null && this.callGamePage('drawBackground', view);
     for (const s of statics) this.body(s.x, s.y, s.angle, s.shape, '#556', '#334');
     for (const b of bodies) this.drawBody(b);
     for (const f of flashes) this.flash(f, now);
+    const drewForeground = view !== null && this.callGamePage('drawForeground', view);
+    if (drewBackground || drewForeground) ++this.gamePageFrames;
+  }
+
+  /** Runs one call of the game's page module, if it has it; whether it ran. A module that
+   *  throws is dropped, told once on the console: the page goes on drawing the game from its
+   *  manifest rather than stop drawing (an exception here would end the frame loop). */
+  private callGamePage(call: 'drawBackground' | 'drawForeground', view: GameView): boolean {
+    const draw = this.gamePage?.[call];
+    if (!draw) return false;
+    this.g.save();
+    try {
+      draw.call(this.gamePage, this.g, view);
+      return true;
+    } catch (e) {
+      console.error(`the game's page module failed in ${call}, drawn without it from now on:`, e);
+      this.gamePage = null;
+      return false;
+    } finally {
+      this.g.restore();
+    }
   }
 
   /** Canvas pixels of a world point, relative to the centre (the short way when wrapping). */

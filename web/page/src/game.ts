@@ -44,3 +44,13 @@ export function eventText(game: Manifest, kind: number, values: number[], nameOf
     return String(v);
   });
 }
+
+/** A match's result as the rules give it, in a few words: a team game's winning team ("red
+ *  win") or "a draw"; otherwise the winning player ("NAME wins"), the players tied at the top
+ *  ("A and B tie"), or '' for nobody. */
+export function resultText(game: Manifest | null, winningTeam: number, winners: number[], nameOf: (player: number) => string): string {
+  if (game && game.teams.length > 0) return winningTeam ? `${teamName(game, winningTeam)} win` : 'a draw';
+  if (winners.length === 0) return '';
+  const names = winners.map(nameOf);
+  return names.length === 1 ? `${names[0]} wins` : `${names.slice(0, -1).join(', ')} and ${names[names.length - 1]} tie`;
+}

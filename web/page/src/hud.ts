@@ -1,6 +1,8 @@
 // The HUD: the match and its mode with an invite link, the player's score and lives (or, for
 // a spectator, that it is spectating), the scoreboard, and the connection's figures (ping, snapshots a second, the prediction error). Written into the page's elements at most a few
 // times a second; the numbers are also data-* attributes so that tests read them exactly.
+// The scoreboard's head, rows and team line are functions of plain data (boardHead, boardRows,
+// teamSpans), so that the replay page draws a replayed match's scoreboard with them too.
 
 import { Manifest, shown, teamColour, teamField, teamName } from './game.js';
 
@@ -25,6 +27,69 @@ function el(id: string): HTMLElement {
   const e = document.getElementById(id);
   if (!e) throw new Error(`the page has no #${id}`);
   return e;
+}
+
+/** The manifest whose fields make the scoreboard's columns, or null: the protocol's own columns
+ *  (score, k/d, state) already show every field it declares (Asteroids), or there is none. */
+export function boardGame(game: Manifest | null): Manifest | null {
+  const own = ['score', 'kills', 'deaths', 'shots', 'hits', 'lives'];
+  return game && game.playerFields.some((f) => !own.includes(f.name)) ? game : null;
+}
+
+function row(cells: string[], tag: 'td' | 'th'): HTMLTableRowElement {
+  const tr = document.createElement('tr');
+  for (const text of cells) {
+    const cell = document.createElement(tag);
+    cell.textContent = text;
+    tr.appendChild(cell);
+  }
+  return tr;
+}
+
+/** The scoreboard's column titles: the player, then the game's fields (boardGame), or the
+ *  protocol's own columns. */
+export function boardHead(game: Manifest | null): HTMLTableRowElement {
+  return row(game ? ['player', ...game.playerFields.map((f) => f.label)] : ['player', 'score', 'k/d', ''], 'th');
+}
+
+/** The scoreboard's rows: the top ten by the game's rank field (by score without a game), and
+ *  `own`'s line below them when it is not among them (`own` 0: nobody's). `game` is boardGame's;
+ *  `values` holds each player's declared values by id, in the manifest's field order. A line
+ *  without a name shows `#id`. */
+export function boardRows(game: Manifest | null, own: number, lines: Line[], values: Map<number, number[]>, tickRate: number): HTMLTableRowElement[] {
+  const me = lines.find((l) => l.playerId === own);
+  const rank = game ? game.playerFields.findIndex((f) => f.name === game.rankField) : -1;
+  const value = (id: number, k: number) => (k < 0 ? 0 : values.get(id)?.[k] ?? 0);
+  const sorted = game
+    ? [...lines].sort((a, b) => (game.rankAscending ? 1 : -1) * (value(a.playerId, rank) - value(b.playerId, rank)) || a.playerId - b.playerId)
+    : [...lines].sort((a, b) => b.score - a.score || a.playerId - b.playerId);
+  const shownLines = sorted.slice(0, 10);
+  if (me && !shownLines.includes(me)) shownLines.push(me);
+  const team = game ? teamField(game) : -1;
+  return shownLines.map((l) => {
+    const name = l.name || `#${l.playerId}`;
+    const cells = game
+      ? [name, ...game.playerFields.map((f, k) => shown(game, f, value(l.playerId, k), tickRate))]
+      : [name, String(l.score), `${l.kills}/${l.deaths}`, STATE[l.state] ?? ''];
+    const tr = row(cells, 'td');
+    if (l.playerId === own) tr.className = 'me';
+    const colour = game && team >= 0 ? teamColour(game, value(l.playerId, team)) : null;
+    if (colour) tr.style.color = colour;
+    return tr;
+  });
+}
+
+/** The teams' own values, by team number: "red 1 · blue 0", each team in its colour, with its
+ *  name and first value as data-team and data-value. */
+export function teamSpans(game: Manifest, teams: Map<number, number[]>): HTMLSpanElement[] {
+  return [...teams].map(([number, held], i) => {
+    const span = document.createElement('span');
+    span.dataset.team = teamName(game, number);
+    span.dataset.value = String(held[0] ?? 0);
+    span.style.color = teamColour(game, number) ?? '';
+    span.textContent = `${i > 0 ? ' · ' : ''}${teamName(game, number)} ${game.teamFields.map((_, k) => held[k] ?? 0).join(' ')}`;
+    return span;
+  });
 }
 
 export class Hud {
@@ -82,17 +147,10 @@ export class Hud {
   /** The game's manifest: its scoreboard's columns, its teams. Its fields replace the protocol's
    *  own columns unless those already show them all (Asteroids). */
   declare(game: Manifest | null, tickRate: number): void {
-    const own = ['score', 'kills', 'deaths', 'shots', 'hits', 'lives'];
-    this.game = game && game.playerFields.some((f) => !own.includes(f.name)) ? game : null;
+    this.game = boardGame(game);
     this.tickRate = tickRate;
     if (!this.game) return;
-    const head = document.createElement('tr');
-    for (const label of ['player', ...this.game.playerFields.map((f) => f.label)]) {
-      const th = document.createElement('th');
-      th.textContent = label;
-      head.appendChild(th);
-    }
-    (el('scoreboard-table') as HTMLTableElement).tHead?.replaceChildren(head);
+    (el('scoreboard-table') as HTMLTableElement).tHead?.replaceChildren(boardHead(this.game));
     const rank = this.game.playerFields.find((f) => f.name === this.game?.rankField);
     el('own').firstElementChild?.replaceChildren(document.createTextNode(`${(rank?.label ?? 'score').toLowerCase()} `), this.score);
     help(this.game);
@@ -104,44 +162,14 @@ export class Hud {
     const game = this.game;
     if (!game) return this.players(own, lines);
     const rank = game.playerFields.findIndex((f) => f.name === game.rankField);
-    const value = (id: number, k: number) => (k < 0 ? 0 : values.get(id)?.[k] ?? 0);
-    const me = lines.find((l) => l.playerId === own);
-    this.score.textContent = String(value(own, rank));
-    this.score.dataset.value = String(value(own, rank));
+    const mine = rank < 0 ? 0 : values.get(own)?.[rank] ?? 0;
+    this.score.textContent = String(mine);
+    this.score.dataset.value = String(mine);
     this.lives.textContent = '–';
-    const order = game.rankAscending ? 1 : -1;
-    const sorted = [...lines].sort((a, b) => order * (value(a.playerId, rank) - value(b.playerId, rank)) || a.playerId - b.playerId);
-    const shownLines = sorted.slice(0, 10);
-    if (me && !shownLines.includes(me)) shownLines.push(me);
-    const team = teamField(game);
-    this.board.replaceChildren(
-      ...shownLines.map((l) => {
-        const tr = document.createElement('tr');
-        if (l.playerId === own) tr.className = 'me';
-        const colour = team >= 0 ? teamColour(game, value(l.playerId, team)) : null;
-        if (colour) tr.style.color = colour;
-        const cells = [l.name || `#${l.playerId}`, ...game.playerFields.map((f, k) => shown(game, f, value(l.playerId, k), this.tickRate))];
-        for (const text of cells) {
-          const td = document.createElement('td');
-          td.textContent = text;
-          tr.appendChild(td);
-        }
-        return tr;
-      }),
-    );
-    // The teams' own values: "red 1 · blue 0".
+    this.board.replaceChildren(...boardRows(game, own, lines, values, this.tickRate));
     const line = el('teams');
     line.hidden = teams.size === 0;
-    line.replaceChildren(
-      ...[...teams].map(([number, held], i) => {
-        const span = document.createElement('span');
-        span.dataset.team = teamName(game, number);
-        span.dataset.value = String(held[0] ?? 0);
-        span.style.color = teamColour(game, number) ?? '';
-        span.textContent = `${i > 0 ? ' · ' : ''}${teamName(game, number)} ${game.teamFields.map((_, k) => held[k] ?? 0).join(' ')}`;
-        return span;
-      }),
-    );
+    line.replaceChildren(...teamSpans(game, teams));
   }
 
   players(own: number, lines: Line[]): void {
@@ -150,21 +178,7 @@ export class Hud {
     this.score.textContent = String(me?.score ?? 0);
     this.score.dataset.value = String(me?.score ?? 0);
     this.lives.textContent = me ? (me.state === 2 ? 'out' : String(me.lives)) : '–';
-    const sorted = [...lines].sort((a, b) => b.score - a.score || a.playerId - b.playerId);
-    // The top ten, and the own line below them when it is not among them.
-    const shown = sorted.slice(0, 10);
-    if (me && !shown.includes(me)) shown.push(me);
-    const rows = shown.map((l) => {
-      const tr = document.createElement('tr');
-      if (l.playerId === own) tr.className = 'me';
-      for (const text of [l.name || `#${l.playerId}`, String(l.score), `${l.kills}/${l.deaths}`, STATE[l.state] ?? '']) {
-        const td = document.createElement('td');
-        td.textContent = text;
-        tr.appendChild(td);
-      }
-      return tr;
-    });
-    this.board.replaceChildren(...rows);
+    this.board.replaceChildren(...boardRows(null, own, lines, new Map(), this.tickRate));
   }
 
   figures(pingMs: number | null, snapshotsPerSecond: number, predictionErrorM: number | null, inputsLeftOut: number): void {

@@ -6,11 +6,14 @@
 // ?match=ID joins that match, ?mode=NAME joins or creates one of that mode, neither the
 // server's default match; ?lobby shows the lobby (src/lobby.ts) instead of the game.
 // window.arenaPage holds the client and the page's figures, for tests and the console.
+// A game with a page module of its own (games/NAME/page.ts, game_page.ts) draws with it too.
+import { gamePages } from '@arena/game-pages';
 import { connect } from './arena-sdk.mjs';
 import type { ConnectOptions } from './arena-sdk.mjs';
 import { Controls } from './controls.js';
 import { Body, Flash, KIND_BULLET, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
-import { Manifest, eventText, teamColour, teamField, teamName } from './game.js';
+import { Manifest, eventText, resultText, teamColour, teamField } from './game.js';
+import { findGamePage, readWorldConfig } from './game_page.js';
 import { Hud, Line } from './hud.js';
 import { PageQuery, inviteLink, lobbyLink, readQuery } from './links.js';
 import { LobbyState, newLobbyState, showLobby } from './lobby.js';
@@ -61,6 +64,10 @@ interface PageState {
   /** The game's manifest (Welcome.game), and its events as the page told them. */
   game: Manifest | null;
   records: { kind: number; values: number[]; text: string }[];
+  /** The game's page module drawing the match ('' for none: the manifest alone) and the frames
+   *  it drew. */
+  gamePage: string;
+  gamePageFrames: number;
 }
 
 declare global {
@@ -73,7 +80,7 @@ function newPageState(spectating: boolean): PageState {
   return {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
-    bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [],
+    bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [], gamePage: '', gamePageFrames: 0,
   };
 }
 
@@ -120,6 +127,10 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
 
   let world: World = { wraps: false, width: 0, height: 0 };
   let statics: StaticBody[] = [];
+  // The static bodies' ids (a static's shape id is its body's): snapshots hold them too, with no
+  // shape of their own, and they are drawn from the Welcome's statics already (soccer's walls
+  // would otherwise show as a 1 m disc at each segment's middle).
+  let staticIds = new Set<number>();
   let flashes: Flash[] = [];
   let snapshotTimes: number[] = [];
   let frameTimes: number[] = [];
@@ -136,7 +147,8 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     const field = game ? teamField(game) : -1;
     return game && field >= 0 ? teamColour(game, client.values.get(owner)?.[field] ?? 0) : null;
   };
-  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[]; match: string; mode: string; game: Manifest | null; tickRate: number }) => {
+  client.on('welcome', (w: { playerId: number; entityId: number; world: World; statics: StaticBody[]; match: string; mode: string; game: Manifest | null; tickRate: number;
+    worldConfig: string }) => {
     page.playerId = w.playerId;
     page.entityId = w.entityId;
     page.match = w.match;
@@ -145,10 +157,15 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     hud.match(w.match, w.mode, page.invite);
     world = w.world;
     statics = w.statics;
+    staticIds = new Set(statics.map((s) => s.shape.id ?? 0));
     page.game = w.game;
     hud.declare(w.game, w.tickRate);
     if (w.game) controls?.declare(w.game.inputs);
     painter.setTags(w.game?.bodyTags ?? null, ownerColour);
+    const config = readWorldConfig(w.worldConfig);
+    const module = findGamePage(gamePages, w.game, config);
+    painter.setGamePage(module?.page ?? null, config, w.game);
+    page.gamePage = module?.name ?? '';
     hud.setStatus('');
   });
   client.on('snapshot', (s: { tick: number; bodies: { id: number; owner: number; x: number; y: number }[]; predictionError: number | null }) => {
@@ -185,14 +202,14 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     else if (e.kind === 3) hud.flashStatus(`wave ${e.size}`);
     else if (e.kind === 2 && e.player === page.playerId) hud.flashStatus('respawned');
   });
-  client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[]; winningTeam?: number }) => {
+  client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[]; winningTeam?: number; winners?: number[] }) => {
     page.bye = b;
     if (b.scoreboard.length > 0 && !page.game) hud.players(page.playerId, b.scoreboard);
-    const winner = b.scoreboard.find((l) => l.playerId === b.winner);
-    // A team game's result is its team's: a winner or a draw.
-    const teams = page.game !== null && page.game.teams.length > 0;
-    const result = teams ? (b.winningTeam ? `: ${teamName(page.game as Manifest, b.winningTeam)} win` : ': a draw') : winner ? `: ${winner.name || '#' + winner.playerId} wins` : '';
-    hud.setStatus(b.matchOver ? `match over${result}` : `disconnected: ${b.reason}`);
+    // A team game's result is its team's (a winner or a draw), else the winners' names.
+    const nameOf = (id: number) => b.scoreboard.find((l) => l.playerId === id)?.name || `#${id}`;
+    const winners = b.winners && b.winners.length > 0 ? b.winners : b.winner ? [b.winner] : [];
+    const result = resultText(page.game, b.winningTeam ?? 0, winners, nameOf);
+    hud.setStatus(b.matchOver ? `match over${result ? ': ' + result : ''}` : `disconnected: ${b.reason}`);
   });
 
   const draw = (now: number) => {
@@ -201,7 +218,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
       client.input(c.thrust, c.turn, c.buttons);
     }
     const state = client.stateAt(now);
-    const bodies = state.bodies as Body[];
+    const bodies = (state.bodies as Body[]).filter((b) => !staticIds.has(b.id));
     // The own ship, predicted (after a respawn too: the SDK follows the new body); before the
     // first snapshot placed it, the player's ship as the server last sent it. A spectator's view
     // is the whole world, centred on its middle (positions are in [0, size)).
@@ -220,6 +237,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     flashes = flashes.filter((f) => now - f.born < f.life);
     painter.frame(world, page.playerId, centre, statics, bodies, flashes, now, span);
     page.drawn = bodies.length;
+    page.gamePageFrames = painter.gamePageFrames;
     if (unrendered !== null) keep(page.arrivalToRender, performance.now() - unrendered);
     unrendered = null;
 

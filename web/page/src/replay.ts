@@ -3,9 +3,20 @@
 // comes from ?src=URL or from a file the viewer opens. Play, pause, speed 0.25x to 8x and a
 // scrub bar (seeking back re-simulates from the start); every recorded hash is compared as
 // the world reaches its tick, and the first mismatch stops the replay with both hashes shown.
+// Beside the world, the replayed game as the game page shows a live one, from the recording's
+// own rules: its scoreboard and teams (hud.ts), its declared events as its manifest words them
+// (game.ts) and, once the rules end the match, the result.
 // window.arenaReplay holds the figures, for tests and the console.
 import { Core, ReplayPlayer } from './arena-sdk.mjs';
+import type { GameManifest, ReplayLine } from './arena-sdk.mjs';
 import { Body, Painter } from './draw.js';
+import { eventText, resultText, teamColour } from './game.js';
+import { findGamePage, readWorldConfig } from './game_page.js';
+import { gamePages } from '@arena/game-pages';
+import { boardGame, boardHead, boardRows, teamSpans } from './hud.js';
+
+// Events shown in the log, newest first (the SDK keeps the newest 64).
+const EVENTS_SHOWN = 10;
 
 interface ReplayState {
   /** Where the recording came from: the ?src URL or the file's name. */
@@ -25,6 +36,15 @@ interface ReplayState {
   error: string;
   cutShort: string;
   frames: number;
+  /** The replayed game (its manifest's name; '' for none, the sandbox), its scoreboard at
+   *  `tick` (the SDK's lines), its events up to `tick` as the log tells them (oldest first), and
+   *  the result once its rules ended the match ('' before). */
+  game: string;
+  /** The game's page module drawing the replay ('' for none: web/page/src/game_page.ts). */
+  gamePage: string;
+  players: ReplayLine[];
+  events: { sequence: number; tick: number; kind: number; name: string; values: number[]; text: string }[];
+  result: string;
 }
 
 declare global {
@@ -37,6 +57,87 @@ function el<T extends HTMLElement>(id: string): T {
   const e = document.getElementById(id);
   if (!e) throw new Error(`the page has no #${id}`);
   return e as T;
+}
+
+// m:ss into the recording.
+function clock(ticks: number, tickRate: number): string {
+  const seconds = Math.floor(ticks / Math.max(tickRate, 1));
+  return `${Math.floor(seconds / 60)}:${String(seconds % 60).padStart(2, '0')}`;
+}
+
+/** The replayed game beside the canvas: the scoreboard, the teams, the event log and the result,
+ *  drawn with the game page's own helpers (hud.ts, game.ts). */
+class GamePanel {
+  private readonly panel = el('hud');
+  private readonly head = el<HTMLTableSectionElement>('scoreboard-head');
+  private readonly board = el('scoreboard');
+  private readonly teams = el('teams');
+  private readonly log = el<HTMLOListElement>('events');
+  private readonly result = el('result');
+  private game: GameManifest | null = null;
+  private tickRate = 0;
+  private startTick = 0;
+  private teamOf = new Map<number, number>(); // player id -> team, as last drawn
+
+  /** A new recording: its manifest and rates. */
+  open(game: GameManifest | null, tickRate: number, startTick: number): void {
+    this.game = game;
+    this.tickRate = tickRate;
+    this.startTick = startTick;
+    this.head.replaceChildren(boardHead(boardGame(game)));
+    this.teamOf.clear();
+  }
+
+  /** No recording (closed, or one that would not open): no panel. */
+  clear(): void {
+    this.panel.hidden = true;
+    this.game = null;
+    this.teamOf.clear();
+  }
+
+  /** A body's owner's team colour, from the scoreboard last drawn. */
+  ownerColour = (owner: number): string | null => (this.game ? teamColour(this.game, this.teamOf.get(owner) ?? 0) : null);
+
+  /** The game at the player's tick, into the page and `state`. */
+  draw(player: ReplayPlayer, state: ReplayState): void {
+    // A player as the recording names it (one who has left too: events name them), else "player N".
+    const nameOf = (id: number): string => player.nameOf(id) || `player ${id}`;
+    const lines = player.scoreboard();
+    for (const l of lines) this.teamOf.set(l.playerId, l.team);
+    const named = lines.map((l) => ({ ...l, name: l.name || `player ${l.playerId}` }));
+    const values = new Map(lines.map((l) => [l.playerId, l.values]));
+    const game = this.game;
+    // A sandbox recording keeps no score: no panel at all.
+    this.panel.hidden = lines.length === 0 && !game;
+    this.board.replaceChildren(...boardRows(boardGame(game), 0, named, values, this.tickRate));
+    const teams = new Map(player.teams().map((t) => [t.team, t.values]));
+    this.teams.hidden = !game || teams.size === 0;
+    this.teams.replaceChildren(...(game ? teamSpans(game, teams) : []));
+
+    const events = game ? player.events().map((e) => ({ ...e, name: game.events[e.kind]?.name ?? '', text: eventText(game, e.kind, e.values, nameOf) })) : [];
+    this.log.replaceChildren(
+      ...events
+        .slice(-EVENTS_SHOWN)
+        .reverse()
+        .map((e) => {
+          const li = document.createElement('li');
+          li.dataset.tick = String(e.tick);
+          li.dataset.kind = e.name;
+          li.textContent = `${clock(e.tick - this.startTick, this.tickRate)} ${e.text}`;
+          return li;
+        }),
+    );
+    this.log.hidden = events.length === 0;
+
+    const r = player.result();
+    const result = r.finished ? `match over: ${resultText(game, r.winningTeam, r.winners, nameOf) || 'no winner'}` : '';
+    this.result.textContent = result;
+    this.result.hidden = result === '';
+    state.game = game?.name ?? '';
+    state.players = named;
+    state.events = events;
+    state.result = result;
+  }
 }
 
 // "tick T: hash mismatch: expected E, actual A" (web/sdk/core/c_api.cpp) as a sentence.
@@ -57,8 +158,9 @@ async function main(): Promise<void> {
   const status = el('status');
   const state: ReplayState = {
     source: '', loaded: false, playing: false, speed: Number(speedSelect.value), tick: 0, startTick: 0, endTick: 0, hash: '', recordedHash: '',
-    hashesChecked: 0, hashesTotal: 0, error: '', cutShort: '', frames: 0,
+    hashesChecked: 0, hashesTotal: 0, error: '', cutShort: '', frames: 0, game: '', gamePage: '', players: [], events: [], result: '',
   };
+  const panel = new GamePanel();
   window.arenaReplay = state;
   const setStatus = (text: string) => {
     status.textContent = text;
@@ -69,6 +171,7 @@ async function main(): Promise<void> {
   let player: ReplayPlayer | null = null;
   let carry = 0; // ticks owed to the clock, below one
   let last = 0;
+  let panelTick = -1; // the tick the game panel shows
 
   const show = () => {
     if (!player) return;
@@ -90,6 +193,9 @@ async function main(): Promise<void> {
       const end = state.tick >= state.endTick ? (state.cutShort !== '' ? ' · recording cut short here' : ' · final hash verified') : '';
       hashesText.textContent = `hashes verified: ${state.hashesChecked}/${state.hashesTotal}${at}${end}`;
     }
+    // The scoreboard and the log change with the tick only: not redrawn in a frame that played none.
+    if (state.tick !== panelTick) panel.draw(player, state);
+    panelTick = state.tick;
     const world = player.world;
     const bodies: Body[] = player.bodies().map((b) => ({ ...b, predicted: false }));
     const span = Math.max(world.width, world.height) || 100;
@@ -119,6 +225,7 @@ async function main(): Promise<void> {
   const open = (bytes: Uint8Array, source: string) => {
     player?.close();
     player = null;
+    panel.clear();
     state.loaded = false;
     state.playing = false;
     state.source = source;
@@ -134,6 +241,15 @@ async function main(): Promise<void> {
     state.startTick = player.startTick;
     state.endTick = player.endTick;
     state.cutShort = player.cutShort;
+    const game = player.manifest;
+    panel.open(game, player.tickRate, player.startTick);
+    painter.setTags(game?.bodyTags ?? null, panel.ownerColour);
+    // The game's own drawing, as the game page draws a match (its pitch, its marks).
+    const config = readWorldConfig(player.worldConfig);
+    const module = findGamePage(gamePages, game, config);
+    painter.setGamePage(module?.page ?? null, config, game);
+    state.gamePage = module?.name ?? '';
+    panelTick = -1;
     scrub.min = String(state.startTick);
     scrub.max = String(state.endTick);
     scrub.disabled = false;

@@ -4,9 +4,13 @@
 // end with every recorded hash verified and the final hash arena-replay computes natively,
 // scrubs back and forward to the same hash; plays the server's own --record file from
 // /recording on the metrics port (--serve-recording) while the server is still writing it; and opens a local file whose recorded hash
-// was changed, stopping at that tick with both hashes shown.
+// was changed, stopping at that tick with both hashes shown. A soccer match (the SDK's build-time
+// fixture, web/sdk/fixtures/record_soccer.cpp) shows the replayed game beside the world: the
+// scoreboard with soccer's columns and the values arena-replay computes natively, the teams'
+// goals, the events as the manifest words them and the result; a scrub back rebuilds them.
 //   ARENA_SERVER  arena-server     ARENA_REPLAY  arena-replay    ARENA_CHROMIUM  the browser
-//   ARENA_SOURCE_DIR  the repository (tests/data)   NODE_PATH  the page's node_modules
+//   ARENA_SOURCE_DIR  the repository (tests/data)   ARENA_SDK_FIXTURES  the SDK's fixtures
+//   NODE_PATH  the page's node_modules
 import { execFileSync, spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -22,13 +26,15 @@ const server = need('ARENA_SERVER');
 const replayBinary = need('ARENA_REPLAY');
 const chromium = need('ARENA_CHROMIUM');
 const golden = join(need('ARENA_SOURCE_DIR'), 'tests/data/golden_asteroids.arpl');
+const soccer = join(need('ARENA_SDK_FIXTURES'), 'soccer.arpl');
 const wait = (what, check, timeoutMs = 20000) => until(what, check, timeoutMs);
 
 const dir = mkdtempSync(join(tmpdir(), 'arena-replay-page-'));
 const servers = [];
 let browser;
-let files; // serves the golden recording to the page, from another origin
+let files; // serves the golden recording and the soccer match to the page, from another origin
 let filesUrl;
+let soccerUrl;
 
 // An arena-server with --http-port; its page's URL. With --metrics-port among `extra`, the
 // metrics port's URL is in metricsUrls[page URL].
@@ -52,16 +58,19 @@ async function startServer(extra) {
 }
 
 before(async () => {
+  const served = { '/golden_asteroids.arpl': golden, '/soccer.arpl': soccer };
   files = createServer((request, response) => {
-    if (request.url !== '/golden_asteroids.arpl') {
+    const file = served[request.url];
+    if (!file) {
       response.writeHead(404).end();
       return;
     }
     response.writeHead(200, { 'Content-Type': 'application/octet-stream', 'Access-Control-Allow-Origin': '*' });
-    response.end(readFileSync(golden));
+    response.end(readFileSync(file));
   });
   await new Promise((resolve) => files.listen(0, '127.0.0.1', resolve));
   filesUrl = `http://127.0.0.1:${files.address().port}/golden_asteroids.arpl`;
+  soccerUrl = `http://127.0.0.1:${files.address().port}/soccer.arpl`;
   browser = await puppeteer.launch({ executablePath: chromium, headless: true, args: ['--no-sandbox', '--disable-gpu'] });
 });
 
@@ -106,6 +115,10 @@ test('the replay page plays the golden recording to its final hash, and a scrub 
   assert.equal(start.tick, start.startTick);
   assert.ok(start.endTick > start.startTick + 100, `ticks ${start.startTick}..${start.endTick}`);
   assert.match(start.text, new RegExp(`^hashes verified: 1/${start.hashesTotal}`));
+  // A sandbox recording: its rules keep no score and declare nothing, so no game panel.
+  assert.equal(start.game, '');
+  assert.equal(start.gamePage, '', 'no page module for the sandbox');
+  assert.equal(await page.$eval('#hud', (e) => e.hidden), true, 'no scoreboard for the sandbox');
   const startCanvas = await canvasHash(page);
 
   await page.select('#speed', '8');
@@ -215,5 +228,91 @@ test('a local file with a changed recorded hash stops at that tick, both hashes 
   assert.equal(await page.$eval('#hashes', (e) => e.className), 'failed');
   assert.match(stopped.text, new RegExp(`hash MISMATCH at tick ${changed.tick}: the recording has ${wrong}, this replay computed ${changed.recorded}`));
   assert.match(stopped.text, new RegExp(`^hashes verified: 1/${stopped.hashesTotal}`));
+  assert.deepEqual(problems, [], 'no errors in the page');
+});
+
+// What the game panel shows: the scoreboard's head and rows, the teams (name: first value), the
+// event log (newest first, with each entry's tick and kind) and the result line.
+const panel = (page) => page.evaluate(() => ({
+  hidden: document.getElementById('hud').hidden,
+  head: [...document.querySelectorAll('#scoreboard-head th')].map((t) => t.textContent),
+  rows: [...document.querySelectorAll('#scoreboard tr')].map((tr) => [...tr.children].map((td) => td.textContent)),
+  teams: Object.fromEntries([...document.querySelectorAll('#teams span')].map((s) => [s.dataset.team, Number(s.dataset.value)])),
+  events: [...document.querySelectorAll('#events li')].map((li) => ({ tick: Number(li.dataset.tick), kind: li.dataset.kind, text: li.textContent })),
+  result: document.getElementById('result').hidden ? '' : document.getElementById('result').textContent,
+}));
+// The rows the page should show from arena-replay's scoreboard at `until`: soccer's columns
+// (team by name, goals, kicks), ranked by goals, then by player id.
+function expectedRows(until) {
+  const board = JSON.parse(execFileSync(replayBinary, ['--scoreboard', '--until', String(until), soccer], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] }));
+  return board
+    .sort((a, b) => b.goals - a.goals || a.player - b.player)
+    .slice(0, 10)
+    .map((l) => [l.name || `player ${l.player}`, ['', 'red', 'blue'][l.team], String(l.goals), String(l.kicks)]);
+}
+
+test('a replayed soccer match shows its scoreboard, teams, events and result, and a scrub back rebuilds them', { timeout: 90000 }, async () => {
+  const url = await startServer([]);
+  const { page, problems } = await openReplay(`${url}replay?src=${encodeURIComponent(soccerUrl)}`);
+  const start = await figures(page);
+  assert.equal(start.error, '');
+  assert.equal(start.game, 'soccer');
+  assert.equal(start.gamePage, 'soccer', 'soccer\'s page module draws its pitch under the replay too');
+  const opened = await panel(page);
+  assert.equal(opened.hidden, false);
+  assert.deepEqual(opened.head, ['player', 'Team', 'Goals', 'Kicks'], 'soccer\'s columns, from its manifest');
+  assert.deepEqual(opened.rows, [], 'nobody has joined at the start');
+  assert.deepEqual(opened.events, []);
+  assert.equal(opened.result, '');
+
+  // Played at 8x, the log fills as the replay reaches each event.
+  await page.select('#speed', '8');
+  await page.click('#play');
+  const told = await wait('an event in the log while playing', async () => {
+    const p = await panel(page);
+    return p.events.length > 0 ? p : null;
+  }, 30000);
+  await page.click('#play'); // pause
+  console.log(`while playing: ${told.events[0].text}`);
+  assert.ok((await figures(page)).tick >= told.events[0].tick);
+
+  // The end: the values the recording reached, every event told, the result.
+  const end = start.endTick;
+  await scrubTo(page, end);
+  const last = await panel(page);
+  const state = await figures(page);
+  console.log(`at the end: ${JSON.stringify(last.rows)} ${JSON.stringify(last.teams)}; ${last.result}; ${last.events.map((e) => e.text).join(' | ')}`);
+  assert.deepEqual(last.rows, expectedRows(end), 'the scoreboard arena-replay computes natively');
+  assert.ok(last.rows.some((r) => Number(r[3]) > 0), 'kicks counted');
+  assert.ok(last.events.length > 0);
+  for (const e of last.events) assert.match(e.text, /^\d+:\d\d [^{}]+$/, 'each message with its values in place');
+  assert.deepEqual(last.events.map((e) => e.tick), [...last.events.map((e) => e.tick)].sort((a, b) => b - a), 'newest first');
+  assert.deepEqual(last.events.map((e) => e.text.replace(/^\d+:\d\d /, '')), state.events.slice(-10).reverse().map((e) => e.text), 'the newest ten');
+  // Every goal is told, for the team whose goals show on the team line; scorers by their recorded names.
+  const goals = state.events.filter((e) => e.name === 'goal' || e.name === 'own_goal');
+  assert.ok(goals.length > 0, 'the fixture has a goal');
+  for (const g of goals) assert.match(g.text, /^(own goal by )?(ana|bo|cy|di|ed|flo)\b/, g.text);
+  const counted = { red: goals.filter((g) => g.values[1] === 1).length, blue: goals.filter((g) => g.values[1] === 2).length };
+  assert.deepEqual(last.teams, counted, 'the team line: the goals the events told');
+  const winner = counted.red === counted.blue ? 'a draw' : counted.red > counted.blue ? 'red win' : 'blue win';
+  assert.equal(last.result, `match over: ${winner}`);
+  assert.match(last.events[0].text, new RegExp(`full time: ${counted.red === counted.blue ? 'a draw' : counted.red > counted.blue ? 'red' : 'blue'}$`));
+
+  // Back to just before the first event: an empty log, no result, the scoreboard of then.
+  const first = state.events[0];
+  await scrubTo(page, first.tick - 1);
+  const before = await panel(page);
+  assert.deepEqual(before.events, []);
+  assert.equal(before.result, '');
+  assert.deepEqual(before.rows, expectedRows(first.tick - 1));
+  // The middle: the events up to it, and forward to the end: all of them again.
+  const middle = Math.floor((start.startTick + end) / 2);
+  await scrubTo(page, middle);
+  const half = await panel(page);
+  assert.deepEqual(half.events, last.events.filter((e) => e.tick <= middle));
+  assert.deepEqual(half.rows, expectedRows(middle));
+  await scrubTo(page, end);
+  assert.deepEqual(await panel(page), last, 'the same panel at the end again');
+  if (process.env.ARENA_REPLAY_SOCCER_SCREENSHOT) await page.screenshot({ path: process.env.ARENA_REPLAY_SOCCER_SCREENSHOT });
   assert.deepEqual(problems, [], 'no errors in the page');
 });

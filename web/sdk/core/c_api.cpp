@@ -4,6 +4,7 @@
 // the JavaScript side needs no binding library: it copies a frame in, calls, and reads the
 // answer where the returned pointer says. Pointers stay valid until the next call on the same
 // handle.
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "client_sim/session.hpp"
+#include "protocol/manifest.hpp"
 #include "server/match/shape_wire.hpp"
 #include "server/replay/replayer.hpp"
 #include "web/sdk/core/replay_player.hpp"
@@ -79,11 +81,52 @@ struct replay {
     std::string final_hash;
 };
 
+// A scoreboard line of the replayed game: the player, the protocol's own columns (PlayerLine),
+// its team and the game's declared values (in its manifest's player_fields order; the rest 0).
+// 64 bytes, every field at a 4-byte offset.
+struct sdk_line {
+    std::uint32_t player;
+    std::uint32_t score, kills, deaths, shots, hits, lives;
+    std::uint8_t state;  // protocol PlayerState: playing 0, respawning 1, out 2
+    std::uint8_t team;   // 0 in a game without teams
+    std::uint8_t out;
+    std::uint8_t unused;
+    std::int32_t values[arena::protocol::max_game_fields];
+};
+static_assert(sizeof(sdk_line) == 64);
+
+// A team's line: its number (1 is the manifest's first team), its score and the game's declared
+// values (team_fields order). 40 bytes.
+struct sdk_team {
+    std::uint32_t team;
+    std::uint32_t score;
+    std::int32_t values[arena::protocol::max_game_fields];
+};
+static_assert(sizeof(sdk_team) == 40);
+
+// A declared event of the log (replay_player::logged_event): its number since the start, the
+// tick, its kind (the manifest's events[kind]) and values. 28 bytes.
+struct sdk_event {
+    std::uint32_t sequence;
+    std::uint32_t tick;
+    std::uint8_t kind;
+    std::uint8_t unused[3];
+    std::int32_t values[arena::protocol::max_event_values];
+};
+static_assert(sizeof(sdk_event) == 28);
+
 struct player {
     std::unique_ptr<arena::sdk::replay_player> playing;
     std::vector<arena::protocol::BodyState> bodies;
     std::vector<sdk_shape> shapes;
+    std::vector<std::uint8_t> manifest;  // encoded once: the rules declare it once
+    std::vector<sdk_line> lines;
+    std::vector<std::string> names;  // of `lines`, in their order
+    std::vector<sdk_team> teams;
+    std::vector<sdk_event> events;
+    std::vector<std::uint32_t> winners;
     std::string text;  // the last hash or error asked for
+    std::string name;  // the last name asked for
 };
 
 std::string open_error;  // why the last arena_replay_open or arena_player_open failed
@@ -332,6 +375,7 @@ ARENA_API player* arena_player_open(const char* path) {
     }
     auto* p = new player;
     p->playing = std::move(opened.value);
+    p->manifest = arena::protocol::encode_manifest(p->playing->manifest());
     return p;
 }
 ARENA_API void arena_player_free(player* p) {
@@ -386,6 +430,10 @@ ARENA_API const char* arena_player_error(player* p) {
 ARENA_API const char* arena_player_cut_short(const player* p) {
     return p->playing->cut_short().c_str();
 }
+// The recorded world config (JSON, as a Welcome carries it): a game's page module reads it.
+ARENA_API const char* arena_player_world_config(const player* p) {
+    return p->playing->file_header().world_config.c_str();
+}
 // The world's bounds, as arena_world_wraps/width/height give them for a session.
 ARENA_API int arena_player_world_wraps(const player* p) {
     return p->playing->world().config().boundary == arena::world::boundary::wrap ? 1 : 0;
@@ -414,4 +462,99 @@ ARENA_API std::uint32_t arena_player_body_count(const player* p) {
 }
 ARENA_API const sdk_shape* arena_player_shapes(const player* p) {
     return p->shapes.data();
+}
+
+// --- player: the replayed game's scoreboard, events and result -----------------------------
+
+// The game's manifest as a GameManifest buffer (protocol/manifest.hpp, Welcome.game's bytes:
+// the SDK reads both with one decoder); size 0 for a game that declares nothing (the sandbox).
+ARENA_API const std::uint8_t* arena_player_manifest(const player* p) {
+    return p->manifest.data();
+}
+ARENA_API std::uint32_t arena_player_manifest_size(const player* p) {
+    return static_cast<std::uint32_t>(p->manifest.size());
+}
+// The scoreboard now, by player id: 64-byte lines (sdk_line), as many as
+// arena_player_scoreboard_count says; arena_player_scoreboard_name(i) is line i's name as the
+// player joined with it ("" when the recording holds none). Valid until the next call of this.
+ARENA_API const sdk_line* arena_player_scoreboard(player* p) {
+    const std::vector<arena::rules::score_line> board = p->playing->game_rules().scoreboard();
+    p->lines.clear();
+    for (const arena::rules::score_line& l : board) {
+        sdk_line out{};
+        out.player = l.player;
+        out.score = l.score;
+        out.kills = l.kills;
+        out.deaths = l.deaths;
+        out.shots = l.shots;
+        out.hits = l.hits;
+        out.lives = l.lives;
+        out.state = static_cast<std::uint8_t>(l.state);
+        out.team = l.team;
+        out.out = l.out ? 1 : 0;
+        std::copy(l.values.begin(), l.values.end(), out.values);
+        p->lines.push_back(out);
+    }
+    p->names = p->playing->names_of(board);
+    return p->lines.data();
+}
+ARENA_API std::uint32_t arena_player_scoreboard_count(const player* p) {
+    return static_cast<std::uint32_t>(p->lines.size());
+}
+ARENA_API const char* arena_player_scoreboard_name(const player* p, std::uint32_t i) {
+    return i < p->names.size() ? p->names[i].c_str() : "";
+}
+// The name player `id` joined with (an event may name a player who has left since); "" when the
+// recording holds none. Valid until the next call of this.
+ARENA_API const char* arena_player_name(player* p, std::uint32_t id) {
+    p->name = p->playing->name_of(id);
+    return p->name.c_str();
+}
+// The teams now, in team order: 40-byte lines (sdk_team); none in a game without teams.
+ARENA_API const sdk_team* arena_player_teams(player* p) {
+    p->teams.clear();
+    for (const arena::rules::team_line& t : p->playing->game_rules().teams()) {
+        sdk_team out{};
+        out.team = t.team;
+        out.score = t.score;
+        std::copy(t.values.begin(), t.values.end(), out.values);
+        p->teams.push_back(out);
+    }
+    return p->teams.data();
+}
+ARENA_API std::uint32_t arena_player_team_count(const player* p) {
+    return static_cast<std::uint32_t>(p->teams.size());
+}
+// The newest declared events up to the current tick, oldest first (at most
+// replay_player::max_logged_events): 28-byte records (sdk_event).
+ARENA_API const sdk_event* arena_player_events(player* p) {
+    p->events.clear();
+    for (const arena::sdk::replay_player::logged_event& e : p->playing->events()) {
+        sdk_event out{};
+        out.sequence = e.sequence;
+        out.tick = e.tick;
+        out.kind = e.event.kind;
+        std::copy(e.event.values.begin(), e.event.values.end(), out.values);
+        p->events.push_back(out);
+    }
+    return p->events.data();
+}
+ARENA_API std::uint32_t arena_player_event_count(const player* p) {
+    return static_cast<std::uint32_t>(p->events.size());
+}
+// 1 once the replayed rules have ended the match (a match clock ran out), else 0.
+ARENA_API int arena_player_finished(const player* p) {
+    return p->playing->game_rules().finished() ? 1 : 0;
+}
+// The team winning now (0: none, a draw or no teams), and the players winning now (the winning
+// team's, or every player tied at the top; none: nobody): arena_player_winner_count ids.
+ARENA_API std::uint32_t arena_player_winning_team(const player* p) {
+    return p->playing->game_rules().winning_team();
+}
+ARENA_API const std::uint32_t* arena_player_winners(player* p) {
+    p->winners = p->playing->game_rules().winners();
+    return p->winners.data();
+}
+ARENA_API std::uint32_t arena_player_winner_count(const player* p) {
+    return static_cast<std::uint32_t>(p->winners.size());
 }

@@ -44,6 +44,9 @@ bool replay_player::restart() {
         return false;
     }
     replayer_ = std::move(opened.value);
+    manifest_ = replayer_->game_rules().manifest();
+    events_.clear();
+    events_seen_ = 0;
     hashes_checked_ = 0;
     mismatch_.reset();
     error_.clear();
@@ -53,8 +56,14 @@ bool replay_player::restart() {
 bool replay_player::run_until(uint32_t tick) {
     replay::replay_options options;
     options.until = tick;
-    options.on_tick = [this](uint32_t, uint64_t hash) {
+    options.on_tick = [this](uint32_t now, uint64_t hash) {
         hash_ = hash;
+        // Called for the start state too, before any step: no rules have run there.
+        if (now == start_tick_) return;
+        for (const rules::declared_event& e : replayer_->game_rules().declared_events()) {
+            events_.push_back({++events_seen_, now, e});
+            if (events_.size() > max_logged_events) events_.pop_front();
+        }
     };
     const replay::replay_report report = replayer_->run(options);
     hashes_checked_ += report.hashes_checked;
@@ -74,6 +83,12 @@ bool replay_player::seek(uint32_t tick) {
     if (tick < this->tick() && !restart()) return false;
     if (mismatch_ || !error_.empty()) return false;
     return run_until(tick);
+}
+
+std::string replay_player::name_of(uint32_t id) const {
+    rules::score_line line;
+    line.player = id;
+    return replayer_->scoreboard_names({&line, 1}).front();
 }
 
 std::optional<uint64_t> replay_player::recorded_hash() const {

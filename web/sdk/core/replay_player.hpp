@@ -4,12 +4,19 @@
 // where it is, the hash it computed there, and how many recorded hashes matched so far.
 // Seeking back starts over from the recording's start and re-simulates (a recording is
 // minutes long at most, and the world steps far faster than real time).
+//
+// It also keeps what a viewer reads beside the bodies: the game's manifest, and a log of the
+// game's declared events as the replayed rules raised them, each with its tick. The log holds
+// the newest max_logged_events; a seek back re-simulates, so it is rebuilt with the world.
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "protocol/manifest.hpp"
 #include "protocol/result.hpp"
 #include "server/replay/replayer.hpp"
 
@@ -47,6 +54,29 @@ public:
     const replay::header& file_header() const { return replayer_->file_header(); }
     const world::world& world() const { return replayer_->state(); }
     const rules::rules& game_rules() const { return replayer_->game_rules(); }
+    // The name each of `lines`' players joined with ("" when the recording holds none).
+    std::vector<std::string> names_of(std::span<const rules::score_line> lines) const {
+        return replayer_->scoreboard_names(lines);
+    }
+    // The name player `id` joined with, up to tick(): also of a player who has left since, as an
+    // event may name one ("" when the recording holds none).
+    std::string name_of(uint32_t id) const;
+
+    // What the replayed game declares of itself (empty for the sandbox), asked of the rules once
+    // per start, as the match asks once per match.
+    const protocol::game_manifest& manifest() const { return manifest_; }
+
+    // One of the game's declared events, with the tick the step that raised it made, and its
+    // number since the start (1 for the first), so that a viewer can tell new ones.
+    struct logged_event {
+        uint32_t sequence = 0;
+        uint32_t tick = 0;
+        rules::declared_event event;
+    };
+    // The newest events up to tick(), oldest first: at most max_logged_events (a long match
+    // raises thousands; a viewer shows the last few).
+    static constexpr size_t max_logged_events = 64;
+    const std::deque<logged_event>& events() const { return events_; }
 
 private:
     struct recorded_hash_at {
@@ -67,6 +97,9 @@ private:
     std::optional<replay::hash_mismatch> mismatch_;
     std::string error_;
     std::string cut_short_;
+    protocol::game_manifest manifest_;
+    std::deque<logged_event> events_;
+    uint32_t events_seen_ = 0;  // since the start: the next event's sequence - 1
 };
 
 }  // namespace arena::sdk

@@ -77,12 +77,27 @@ export interface CoreModule {
   _arena_player_recorded_hash(player: number): number;
   _arena_player_error(player: number): number;
   _arena_player_cut_short(player: number): number;
+  _arena_player_world_config(player: number): number;
   _arena_player_world_wraps(player: number): number;
   _arena_player_world_width(player: number): number;
   _arena_player_world_height(player: number): number;
   _arena_player_bodies(player: number): number;
   _arena_player_body_count(player: number): number;
   _arena_player_shapes(player: number): number;
+  _arena_player_manifest(player: number): number;
+  _arena_player_manifest_size(player: number): number;
+  _arena_player_scoreboard(player: number): number;
+  _arena_player_scoreboard_count(player: number): number;
+  _arena_player_scoreboard_name(player: number, index: number): number;
+  _arena_player_name(player: number, id: number): number;
+  _arena_player_teams(player: number): number;
+  _arena_player_team_count(player: number): number;
+  _arena_player_events(player: number): number;
+  _arena_player_event_count(player: number): number;
+  _arena_player_finished(player: number): number;
+  _arena_player_winning_team(player: number): number;
+  _arena_player_winners(player: number): number;
+  _arena_player_winner_count(player: number): number;
 }
 
 export default function createArenaCore(options?: CoreModuleOptions): Promise<CoreModule>;

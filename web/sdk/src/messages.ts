@@ -121,9 +121,11 @@ function text(s: string | null): string {
   return s ?? '';
 }
 
-// The manifest is a buffer of its own inside the Welcome (arena.fbs): the core verified it.
-function readManifest(w: Welcome): GameManifest | null {
-  const bytes = w.gameArray();
+/** A GameManifest buffer (protocol/manifest.hpp's encode_manifest) as plain data; null for no
+ *  bytes (a game that declares nothing). Only bytes the WebAssembly core verified or made come
+ *  here: the Welcome's (Welcome.game, a buffer of its own in arena.fbs) and a replayed game's
+ *  (ReplayPlayer.manifest). */
+export function decodeManifest(bytes: Uint8Array | null): GameManifest | null {
   if (bytes === null || bytes.length === 0) return null;
   const g = FbGameManifest.getRootAsGameManifest(new flatbuffers.ByteBuffer(bytes));
   const fields = (count: number, at: (i: number) => { name(): string | null; label(): string | null; kind(): number } | null): GameField[] => {
@@ -189,7 +191,7 @@ export function readWelcome(m: Message): WelcomeFields {
     viewRadius: w.viewRadius(),
     match: (w.match() as string | null) ?? '',
     mode: (w.mode() as string | null) ?? '',
-    game: readManifest(w),
+    game: decodeManifest(w.gameArray()),
   };
 }
 
