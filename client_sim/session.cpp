@@ -324,7 +324,11 @@ protocol::input_msg session::next_input(const world::player_input& input) {
     // either (it refuses the connection), and the sequences stay consecutive.
     const bool finite = !world::check_input(input);
     predictor_->on_input(sequence, finite ? input : world::player_input{0.0f, 0.0f, 0});
-    return {sequence, input.thrust, input.turn, input.buttons, delta_ack(), {}};
+    protocol::input_msg message{sequence, input.thrust, input.turn, input.buttons, delta_ack(), {}};
+    const std::uint64_t moment = view_moment_ != 0 ? view_moment_ : std::uint64_t{view_tick_} * 256;
+    message.view_tick = static_cast<std::uint32_t>(moment / 256);
+    message.view_fraction = static_cast<std::uint8_t>(moment % 256);
+    return message;
 }
 
 std::span<const std::uint8_t> session::input(float thrust, float turn, std::uint8_t buttons) {

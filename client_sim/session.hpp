@@ -95,6 +95,11 @@ public:
     // player's inputs waiting, so this tick's is neither numbered, predicted nor sent; the
     // next one carries the next sequence.
     std::span<const std::uint8_t> input(float thrust, float turn, std::uint8_t buttons);
+    // Lag compensation (docs/LAG_COMPENSATION.md): the moment of the world this client shows
+    // now, in 1/256 ticks (a renderer's interpolated tick; 0, the default: the newest snapshot's
+    // tick, which is what a client that draws no interpolation shows). Every input carries it
+    // (Input.view_tick and view_fraction), so the server judges its shots against that past.
+    void set_view_moment(std::uint64_t moment) { view_moment_ = moment; }
     std::span<const std::uint8_t> ping(std::uint64_t client_time);
     std::span<const std::uint8_t> bye(std::string_view reason);
     // The frame the last of those calls returned.
@@ -217,6 +222,7 @@ private:
     bool have_tick_ = false;
     std::uint32_t last_tick_ = 0;  // the newest Snapshot's, decoded or not
     std::uint32_t view_tick_ = 0;
+    std::uint64_t view_moment_ = 0;  // set_view_moment's; 0: view_tick_
     std::uint32_t view_ack_ = 0;
     std::vector<protocol::BodyState> view_;
     std::vector<protocol::shape_desc> shapes_;

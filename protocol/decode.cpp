@@ -93,7 +93,8 @@ result<reject_msg> decode_reject(const Message& message) {
 result<input_msg> decode_input(const Message& message) {
     const auto* t = message.payload_as<Input>();
     if (t == nullptr) return result<input_msg>::failure(unexpected(message, Payload::Input));
-    input_msg in{t->sequence(), t->thrust(), t->turn(), t->buttons(), t->snapshot_ack(), {}};
+    input_msg in{t->sequence(),     t->thrust(), t->turn(),      t->buttons(),
+                 t->snapshot_ack(), {},          t->view_tick(), t->view_fraction()};
     // Whether the numbers are finite is admission's question (world::check_input), asked once
     // for the Input and its earlier list: the decoder reads the structure.
     if (const auto* earlier = t->earlier()) {

@@ -101,7 +101,8 @@ flatbuffers::Offset<Input> create_input(flatbuffers::FlatBufferBuilder& fbb, con
         for (const earlier_input& e : in.earlier) structs.emplace_back(e.sequence, e.thrust, e.turn, e.buttons);
         earlier = fbb.CreateVectorOfStructs(structs);
     }
-    return CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack, earlier);
+    return CreateInput(fbb, in.sequence, in.thrust, in.turn, in.buttons, in.snapshot_ack, earlier, in.view_tick,
+                       in.view_fraction);
 }
 
 frame_bytes encode_ping(std::uint64_t client_time) {

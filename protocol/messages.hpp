@@ -71,6 +71,8 @@ struct input_msg {
     std::uint8_t buttons = 0;              // bit 0 = impulse/jump
     std::uint32_t snapshot_ack = 0;        // newest delta snapshot tick decoded; 0 = none
     std::vector<earlier_input> earlier{};  // oldest first, each sequence below `sequence`
+    std::uint32_t view_tick = 0;           // the tick of the view the client showed; 0 = not told
+    std::uint8_t view_fraction = 0;        // and 1/256 ticks past it
     bool operator==(const input_msg&) const = default;
 };
 

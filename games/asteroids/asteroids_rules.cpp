@@ -86,31 +86,36 @@ void asteroids_rules::on_leaves(world::world& w, std::span<const uint32_t> bodie
 
 void asteroids_rules::before_step(world::world& w, const world::tick_inputs& inputs) {
     // In body id order, whatever order the caller listed them in.
-    std::vector<uint32_t> firing;
+    std::vector<std::pair<uint32_t, uint16_t>> firing;  // (body, the input's rewind)
     for (const world::body_input& in : inputs)
-        if (in.input.buttons & button_fire) firing.push_back(in.body_id.value());
+        if (in.input.buttons & button_fire) firing.emplace_back(in.body_id.value(), in.input.rewind);
     std::sort(firing.begin(), firing.end());
-    for (const uint32_t id : firing) {
+    for (const auto& [id, rewind] : firing) {
         const world::body* b = w.find(id);
         if (!b) continue;
         auto it = players_.find(b->owner);
         if (it == players_.end() || it->second.ship != id) continue;
-        fire(w, it->first, it->second);
+        fire(w, it->first, it->second, rewind);
     }
 }
 
-void asteroids_rules::fire(world::world& w, uint32_t player_id, player& p) {
+void asteroids_rules::fire(world::world& w, uint32_t player_id, player& p, uint16_t rewind) {
     uint32_t live = 0;
     for (const auto& [id, bl] : bullets_) live += bl.owner == player_id ? 1 : 0;
     if (!may_fire(w.tick(), p.next_fire, live, params_)) return;
     world::body* ship = w.find(p.ship);
     if (!ship) return;
-    const shot s = make_shot(*ship, player_id, params_);
+    shot s = make_shot(*ship, player_id, params_);
     ship->apply_impulse(s.recoil);  // `ship` may move in memory once the bullet is added
+    // A rewound bullet touches nothing of the present: the rules judge it against the past.
+    if (rewind != 0) s.bullet.filter.mask = 0;
     const std::optional<uint32_t> id = w.add_body(s.bullet);
     if (!id) return;
-    bullets_[*id] = {
-        player_id, w.tick() + params_.bullet_lifetime_ticks, {player_id, s.bullet.position, s.bullet.velocity}};
+    bullets_[*id] = {player_id,
+                     w.tick() + params_.bullet_lifetime_ticks,
+                     {player_id, s.bullet.position, s.bullet.velocity},
+                     rewind,
+                     s.bullet.position};
     p.next_fire = w.tick() + params_.fire_cooldown_ticks;
     ++p.score.shots;
 }
@@ -223,6 +228,22 @@ void asteroids_rules::after_step(world::world& w) {
             destroy_ship(w, w.find(ship)->owner, 0, removals);
         }
     }
+    record_targets(w);
+    judge_rewound(w, [&](uint32_t bullet, uint32_t target) {
+        if (used(bullet) || used(target)) return;
+        if (const auto rock = rocks_.find(target); rock != rocks_.end()) {
+            const uint32_t size = rock->second;
+            events_.push_back(
+                {event_kind::rock_hit, static_cast<uint8_t>(size), bullets_[bullet].owner, 0, target, points(size)});
+            bullet_hits(bullet, target, points(size));
+            split_rock(w, target, removals);
+        } else if (player_of_ship(target) != nullptr) {
+            const uint32_t victim = w.find(target)->owner;
+            const uint32_t shooter = bullets_[bullet].owner;
+            ++bullet_hits(bullet, target, params_.score_ship).kills;
+            destroy_ship(w, victim, shooter, removals);
+        }
+    });
     const uint32_t now = w.tick();
     for (auto it = bullets_.begin(); it != bullets_.end();) {
         if (it->second.expires <= now) {
@@ -239,6 +260,46 @@ void asteroids_rules::after_step(world::world& w) {
     }
     respawn_due(w);
     if (rocks_.empty()) spawn_wave(w);
+}
+
+void asteroids_rules::record_targets(const world::world& w) {
+    std::vector<hit_history::target> targets;
+    for (const world::body& b : w.bodies()) {
+        const bool rock = rocks_.count(b.id) != 0;
+        const bool ship = !rock && (b.filter.category & category_ship) && (b.filter.mask & category_bullet) &&
+                          player_of_ship(b.id) != nullptr;
+        if (rock || ship) targets.push_back({b.id, b.position, b.radius});
+    }
+    history_.record(w.tick(), std::move(targets));  // bodies are in id order
+}
+
+template <class Hit>
+void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
+    std::vector<std::pair<uint32_t, uint32_t>> hits;  // (bullet, target), judged before any is applied
+    for (auto& [id, b] : bullets_) {
+        if (b.rewind == 0) continue;
+        const world::body* bullet = w.find(id);
+        if (bullet == nullptr) continue;
+        const world::vec2 from = b.last_position;  // a copy: a lambda cannot capture a structured binding
+        const world::vec2 step = world::displacement(from, bullet->position, w.config());
+        const world::body* own = w.find(players_[b.owner].ship);
+        uint32_t nearest = 0;
+        world::real nearest_along = 2;
+        history_.rewound(w.tick(), b.rewind, w.config(), [&](const hit_history::target& t) {
+            if (own != nullptr && t.id == own->id) return;  // never its own ship
+            if (!sweep_hits(from, step, t.position, t.radius + bullet->radius, w.config())) return;
+            // Along the sweep: the first target in the bullet's way is the one it hits.
+            const world::vec2 to = world::displacement(from, t.position, w.config());
+            const world::real along = step.squaredNorm() > 0 ? to.dot(step) / step.squaredNorm() : 0;
+            if (along < nearest_along) {
+                nearest_along = along;
+                nearest = t.id;
+            }
+        });
+        b.last_position = bullet->position;
+        if (nearest != 0) hits.emplace_back(id, nearest);
+    }
+    for (const auto& [bullet, target] : hits) hit(bullet, target);
 }
 
 void asteroids_rules::respawn_due(world::world& w) {
@@ -375,6 +436,7 @@ void asteroids_rules::hash(world::fnv1a& h) const {
         h.add_u32(id);
         h.add_u32(b.owner);
         h.add_u32(b.expires);
+        if (b.rewind != 0) h.add_u32(b.rewind);  // only then: recordings of before keep their hashes
     }
     h.add_u32(static_cast<uint32_t>(rocks_.size()));
     for (const auto& [id, size] : rocks_) {

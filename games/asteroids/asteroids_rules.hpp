@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "games/asteroids/asteroids_shot.hpp"
+#include "server/rules/hit_history.hpp"
 #include "server/rules/rules.hpp"
 #include "server/world/rng.hpp"
 
@@ -81,10 +82,21 @@ private:
         // For the wire (shot_of) only: it decides nothing in the game, so hash() leaves it out
         // and recordings keep their hashes.
         shot_record spawned;
+        // Lag compensation (docs/LAG_COMPENSATION.md): how far in the past (1/256 ticks) its
+        // shooter saw the world when firing, 0 = the present. A rewound bullet passes through
+        // the present and hits the targets where they were that long before each tick.
+        uint16_t rewind = 0;
+        world::vec2 last_position{0, 0};  // before the last step: where its sweep starts
     };
 
     void make_ship(world::world& w, uint32_t player_id, player& p, uint32_t body_id, bool invulnerable);
-    void fire(world::world& w, uint32_t player_id, player& p);
+    void fire(world::world& w, uint32_t player_id, player& p, uint16_t rewind);
+    // The targets a bullet can hit now (vulnerable ships and rocks), into the history.
+    void record_targets(const world::world& w);
+    // Each rewound bullet's sweep of the last step against the targets as its shooter saw them:
+    // the target nearest along the sweep is hit (`hit(bullet, target)`).
+    template <class Hit>
+    void judge_rewound(const world::world& w, Hit&& hit);
     // `shooter`: the player whose bullet did it, 0 for a rock.
     void destroy_ship(world::world& w, uint32_t player_id, uint32_t shooter, std::vector<uint32_t>& removals);
     void split_rock(world::world& w, uint32_t id, std::vector<uint32_t>& removals);
@@ -100,6 +112,7 @@ private:
     std::map<uint32_t, bullet> bullets_;  // by body id
     std::map<uint32_t, uint32_t> rocks_;  // body id → size
     uint32_t wave_size_ = 0;              // large rocks in the last wave
+    hit_history history_;                 // the targets' recent past (derived: not hashed)
     std::vector<game_event> events_;      // the last after_step's
 };
 

@@ -198,6 +198,11 @@ int parse_server_flags(int argc, char** argv, server_setup& out) {
                    "m: each client's snapshots hold its body and the bodies this near it; 0 = the whole world")
         ->check(cli::finite_non_negative)
         ->capture_default_str();
+    app.add_option("--lag-compensation-ms", options.match.lag_compensation_ms,
+                   "judge each shot against the world as its shooter saw it, up to this far back (at most 64 ticks; "
+                   "0: off, every shot against the present)")
+        ->check(CLI::Range(0u, 10000u))
+        ->capture_default_str();
     app.add_option("--delta-history", options.match.delta_history,
                    "snapshots kept per client as delta baselines; older acks get a full view")
         ->check(CLI::Range(1u, 1024u))

@@ -165,14 +165,21 @@ std::variant<admitted_input, rejection> admission::admit_input(client_standing& 
         if (auto problem = world::check_input({e.thrust, e.turn, e.buttons}))
             return rejection{RejectCode::bad_input, "earlier input " + std::to_string(e.sequence) + ": " + *problem};
     client.last_input_tick = tick;
-    if (input.sequence <= client.last_sequence) return admitted_input{true, {}, {}};
+    if (input.sequence <= client.last_sequence) return admitted_input{true, {}, 0, {}, 0};
     // Decoding checked that the earlier sequences rise and stay below this one: those not taken
     // yet are taken now, in order, each once.
-    admitted_input out{false, in, {}};
+    // The moment of the view the input was made from; an earlier input was made a tick before
+    // each later one (one input a tick), so from a view that much older.
+    const uint64_t view = input.view_tick == 0 ? 0 : uint64_t{input.view_tick} * 256 + input.view_fraction;
+    const auto earlier_view = [&](uint32_t sequence) {
+        const uint64_t back = uint64_t{input.sequence - sequence} * 256;
+        return view > back ? view - back : 0;
+    };
+    admitted_input out{false, in, view, {}};
     const uint32_t gap = input.sequence - client.last_sequence - 1;
     for (const protocol::earlier_input& e : input.earlier) {
         if (e.sequence <= client.last_sequence) continue;
-        out.recovered.push_back({e.sequence, {e.thrust, e.turn, e.buttons}});
+        out.recovered.push_back({e.sequence, {e.thrust, e.turn, e.buttons}, earlier_view(e.sequence)});
         client.last_sequence = e.sequence;
     }
     out.lost = gap - out.recovered.size();

@@ -111,6 +111,7 @@ enum class join_kind : uint8_t {
 struct admitted_input {
     bool stale = false;  // sequence not above the last taken: ignored, not refused
     world::player_input input{};
+    uint64_t view = 0;  // Input.view_tick and view_fraction in 1/256 ticks; 0 = not told
     // Earlier inputs (Input.earlier) newer than the last taken, oldest first: each goes to the
     // buffer before `input`, so a lost datagram's input arrives with the next one.
     std::vector<sequenced_input> recovered;

@@ -12,6 +12,7 @@ namespace arena::match {
 struct sequenced_input {
     uint32_t sequence = 0;
     world::player_input input{};
+    uint64_t view = 0;  // the moment of the world the client showed, in 1/256 ticks; 0 = not told
 };
 
 class input_buffer {
@@ -40,6 +41,8 @@ public:
     }
 
     uint32_t last_consumed_sequence() const { return last_.sequence; }
+    // The view moment (1/256 ticks, 0 = not told) of the input consume() returned last.
+    uint64_t last_consumed_view() const { return last_.view; }
     uint64_t underruns() const { return underruns_; }
     uint64_t overflows() const { return overflows_; }
     size_t waiting() const { return waiting_.size(); }

@@ -118,7 +118,7 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
     for (const sequenced_input& earlier : in.recovered) p.inputs.push(earlier);
     counters_.inputs_recovered += in.recovered.size();
     counters_.inputs_lost += in.lost;
-    p.inputs.push({input.sequence, in.input});
+    p.inputs.push({input.sequence, in.input, in.view});
     return true;
 }
 
@@ -235,7 +235,10 @@ void match::tick() {
     pending_leaves_.clear();
     for (auto& [id, p] : players_) {
         // A disconnected player's body coasts: no thrust, no turn, no buttons.
-        if (p.body_id) record.inputs.push_back({p.body_id, p.who ? p.inputs.consume() : world::player_input{}});
+        if (!p.body_id) continue;
+        world::player_input input = p.who ? p.inputs.consume() : world::player_input{};
+        if (p.who) input.rewind = rewind_of(p.inputs.last_consumed_view());
+        record.inputs.push_back({p.body_id, input});
     }
     const std::vector<world::body_id> spawned = apply_tick(world_, *rules_, record);
     if (on_tick) on_tick(record, rules::state_hash(world_, *rules_));
@@ -324,6 +327,14 @@ match_counters match::counters() const {
         total.input_overflows += p.inputs.overflows();
     }
     return total;
+}
+
+uint16_t match::rewind_of(uint64_t view) const {
+    const uint64_t cap =
+        std::min<uint64_t>(uint64_t{config_.lag_compensation_ms} * config_.tick_rate * 256 / 1000, world::max_rewind);
+    const uint64_t now = uint64_t{world_.tick()} * 256;
+    if (view == 0 || view >= now) return 0;
+    return static_cast<uint16_t>(std::min(now - view, cap));
 }
 
 }  // namespace arena::match

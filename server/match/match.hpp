@@ -46,6 +46,10 @@ struct match_config {
     float view_radius = 0;          // m: snapshots hold the bodies this near a player's; 0 = all
     uint32_t delta_history = 32;    // snapshots kept as delta baselines per client (1.6 s at 20 Hz)
     uint32_t score_limit = 0;       // the match is over when a player's score reaches it; 0: no limit
+    // Lag compensation (docs/LAG_COMPENSATION.md): an input's shots are judged against the
+    // world as its player saw it, up to this far back (and never more than world::max_rewind);
+    // 0 turns it off.
+    uint32_t lag_compensation_ms = 250;
 };
 
 struct match_counters {
@@ -224,6 +228,9 @@ private:
     // The rules' kind of each body that appeared or was retagged since the last tick, and a new
     // bullet's origin.
     void tag_new_bodies();
+    // The rewind (1/256 ticks) of an input made from the view moment `view` (1/256 ticks, 0 =
+    // not told), applied this tick: clamped to [0, the cap]; a view of the future gets 0.
+    uint16_t rewind_of(uint64_t view) const;
     void record_origin(uint32_t body_id, const rules::shot_record& shot);
     // `r` is a player or a spectator: what it sees is the view around `own`, or with none
     // (a spectator) the whole world; `ack` is its last input consumed.

@@ -1,5 +1,6 @@
 #include "server/replay/record_format.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -64,9 +65,22 @@ protocol::result<record> decode_tick(const fb::Tick& t) {
     if (const auto* leaves = t.leaves())
         for (const uint32_t id : *leaves) out.leaves.emplace_back(id);
     if (const auto* inputs = t.inputs()) {
+        const auto* rewinds = t.rewinds();
+        if (rewinds != nullptr && rewinds->size() != inputs->size())
+            return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": " +
+                                                     std::to_string(rewinds->size()) + " rewinds for " +
+                                                     std::to_string(inputs->size()) + " inputs");
         out.inputs.reserve(inputs->size());
         for (const fb::TickInput* in : *inputs) {
             world::body_input b{world::body_id{in->body_id()}, {in->thrust(), in->turn(), in->buttons()}};
+            if (rewinds != nullptr) {
+                b.input.rewind = rewinds->Get(static_cast<flatbuffers::uoffset_t>(out.inputs.size()));
+                if (b.input.rewind > world::max_rewind)
+                    return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": input for body " +
+                                                             std::to_string(in->body_id()) + ": rewind " +
+                                                             std::to_string(b.input.rewind) + " over the most, " +
+                                                             std::to_string(world::max_rewind));
+            }
             // NaN must never enter the world, whatever the file says.
             if (auto problem = world::check_input(b.input)) {
                 return protocol::result<record>::failure("Tick " + std::to_string(out.tick) + ": input for body " +
@@ -117,6 +131,7 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
     // Empty vectors are left out: most ticks have no joins or leaves.
     flatbuffers::Offset<flatbuffers::Vector<uint32_t>> joins, leaves;
     flatbuffers::Offset<flatbuffers::Vector<const fb::TickInput*>> inputs;
+    flatbuffers::Offset<flatbuffers::Vector<uint16_t>> rewinds;
     // The ids' numbers, as they always were on disk.
     auto numbers = [](const auto& ids) {
         std::vector<uint32_t> out;
@@ -135,6 +150,14 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
             const world::body_input& in = t.inputs[i];
             slots[i] = fb::TickInput(in.body_id.value(), in.input.thrust, in.input.turn, in.input.buttons);
         }
+        // Rewinds only when one is not 0: a match without lag compensation records as before.
+        if (std::any_of(t.inputs.begin(), t.inputs.end(),
+                        [](const world::body_input& in) { return in.input.rewind; })) {
+            std::vector<uint16_t> values;
+            values.reserve(t.inputs.size());
+            for (const world::body_input& in : t.inputs) values.push_back(in.input.rewind);
+            rewinds = builder_.CreateVector(values);
+        }
     }
     fb::TickBuilder b(builder_);
     b.add_tick(t.tick);
@@ -142,6 +165,7 @@ void record_encoder::append(const match::tick_record& t, std::vector<uint8_t>& o
     if (!leaves.IsNull()) b.add_leaves(leaves);
     if (!inputs.IsNull()) b.add_inputs(inputs);
     if (!names.IsNull()) b.add_join_names(names);
+    if (!rewinds.IsNull()) b.add_rewinds(rewinds);
     const auto content = b.Finish();
     fb::FinishSizePrefixedRecordBuffer(builder_, fb::CreateRecord(builder_, fb::Content::Tick, content.Union()));
     finish_into(out);

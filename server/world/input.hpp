@@ -15,7 +15,16 @@ struct player_input {
     real thrust = 0.0f;   // [−1, 1], share of control.thrust_force
     real turn = 0.0f;     // [−1, 1], share of control.turn_torque (positive: counter-clockwise)
     uint8_t buttons = 0;  // bit 0: impulse (boost or jump)
+    // Lag compensation (docs/LAG_COMPENSATION.md): how far behind the tick it is applied in the
+    // world the player saw was when making this input, in 1/256 ticks, as the match clamped
+    // it (0: judged against the present). The world's step ignores it; a game's rules may
+    // judge this player's shots against the past it saw.
+    uint16_t rewind = 0;
 };
+
+// The most a match rewinds (1/256 ticks): 64 ticks, a second at 64 Hz. Games keep their history
+// of hittable bodies this deep (server/rules/hit_history.hpp).
+inline constexpr uint16_t max_rewind = 64 * 256;
 
 inline constexpr uint8_t button_impulse = 1u << 0;
 

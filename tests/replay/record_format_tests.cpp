@@ -143,6 +143,28 @@ TEST_CASE("a Tick whose join names do not match its joins, or forge a log line, 
     CHECK(decode_record(frame_of(tick_with_names({1}, {"ada"})).span()).ok());
 }
 
+TEST_CASE("a Tick's rewinds round-trip, and a tick without them rewinds nothing", "[replay][lag]") {
+    match::tick_record t;
+    t.tick = 40;
+    t.inputs = {{world::body_id{3}, {0, 0, 2}}, {world::body_id{7}, {0, 0, 0}}};
+    t.inputs[0].input.rewind = 6 * 256 + 128;  // lag compensation: 6.5 ticks back
+    const match::tick_record out = round_trip(t);
+    REQUIRE(out.inputs.size() == 2);
+    CHECK(out.inputs[0].input.rewind == 6 * 256 + 128);
+    CHECK(out.inputs[1].input.rewind == 0);
+    t.inputs[0].input.rewind = 0;
+    CHECK(round_trip(t).inputs[0].input.rewind == 0);
+    // Over the most a match gives: a forged file, refused.
+    t.inputs[0].input.rewind = world::max_rewind + 1;
+    record_encoder encoder;
+    std::vector<uint8_t> bytes;
+    encoder.append(t, bytes);
+    const aligned_frame f = frame_of(bytes);
+    const auto decoded = decode_record(f.span());
+    REQUIRE_FALSE(decoded.ok());
+    CHECK(decoded.error == "Tick 40: input for body 3: rewind 16385 over the most, 16384");
+}
+
 TEST_CASE("an empty Tick round-trips", "[replay]") {
     const match::tick_record out = round_trip(match::tick_record{5, {}, {}, {}, {}});
     CHECK(out.tick == 5);

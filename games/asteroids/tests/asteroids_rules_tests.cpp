@@ -397,3 +397,69 @@ TEST_CASE("the rules tell what happened (a rock hit, a ship lost, its respawn, a
     CHECK(empty.r.events()[0].kind == rules::event_kind::wave);
     CHECK(empty.r.events()[0].value == 1);
 }
+
+namespace {
+
+// Lag compensation: ship 1 fires along +x at ship 2, which stood 10 m ahead in the line of fire
+// until the moment of the shot, then left it (30 m up). The bullet needs about 15 ticks to get
+// there. Returns whether ship 2 was destroyed, for a shot whose input rewinds `rewind`.
+bool shot_at_leaving_target_hits(uint16_t rewind) {
+    game g(one_rock(1));
+    const uint32_t shooter = g.join(1);
+    const uint32_t victim = g.join(2);
+    uint32_t rock = 0;
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) != 0) rock = b.id;
+    const vec2 gun{20, 50}, ahead{30, 50}, away{30, 80};
+    const auto hold = [&](uint32_t id, vec2 at) {
+        world::body* b = g.w.find(id);
+        REQUIRE(b);
+        b->position = at;
+        b->velocity = {0, 0};
+        b->angular_velocity = 0;
+        b->angle = 0;
+    };
+    const auto tick = [&](vec2 victim_at, const world::tick_inputs& inputs = {}) {
+        hold(shooter, gun);
+        if (g.r.body_of(2) == victim) hold(victim, victim_at);
+        if (rock != 0 && g.w.find(rock)) hold(rock, {80, 10});
+        g.step(inputs);
+    };
+    // Past both ships' invulnerability after joining, and half a second in the line of fire
+    // (an invulnerable ship is no target, in the past either).
+    for (uint32_t k = 0; k <= g.r.params().invulnerable_ticks + 30; ++k) tick(ahead);
+    world::player_input fire{0, 0, rules::button_fire};
+    fire.rewind = rewind;
+    tick(away, {{world::body_id{shooter}, fire}});
+    for (uint32_t k = 0; k < 40 && g.score(1).kills == 0; ++k) tick(away);
+    return g.score(1).kills == 1;
+}
+
+}  // namespace
+
+TEST_CASE("a rewound shot hits the target where its shooter saw it, and only there", "[rules][asteroids][lag]") {
+    // Without a rewind the target has left the line before the bullet gets there: a miss.
+    CHECK_FALSE(shot_at_leaving_target_hits(0));
+    // Seen 5 ticks late, the target had left as well.
+    CHECK_FALSE(shot_at_leaving_target_hits(5 * 256));
+    // Seen 20 ticks late (333 ms at 60 Hz), the target was still in the line: a hit.
+    CHECK(shot_at_leaving_target_hits(20 * 256));
+}
+
+TEST_CASE("the hit history keeps a bounded past and interpolates between ticks", "[rules][lag]") {
+    world::world_config c = world::asteroids_preset();
+    rules::hit_history h;
+    for (uint32_t t = 1; t <= 200; ++t) h.record(t, {{7, vec2{static_cast<real>(t), 10}, 1}});
+    CHECK(h.ticks() == rules::hit_history::depth);  // 66 ticks, however long it ran
+    std::vector<rules::hit_history::target> seen;
+    const auto at = [&](uint16_t rewind) {
+        seen.clear();
+        h.rewound(200, rewind, c, [&](const rules::hit_history::target& t) { seen.push_back(t); });
+        REQUIRE(seen.size() == 1);
+        return seen[0].position.x();
+    };
+    CHECK(at(0) == 200);
+    CHECK(at(10 * 256) == 190);
+    CHECK(at(10 * 256 + 128) == Approx(189.5f));
+    CHECK(at(world::max_rewind) == 136);  // the most an input rewinds: 64 ticks back
+}

@@ -189,6 +189,11 @@ ARENA_API std::uint32_t arena_hello_to(client* c, const char* name, const char* 
                                        const char* mode) {
     return out_size(c->session.hello(name, token, match, mode));
 }
+// The moment of the world the page shows now (its interpolated tick, and 1/256 ticks past it),
+// which every input then carries for lag compensation (docs/LAG_COMPENSATION.md).
+ARENA_API void arena_set_view_moment(client* c, std::uint32_t tick, std::uint32_t fraction) {
+    c->session.set_view_moment(std::uint64_t{tick} * 256 + std::min<std::uint32_t>(fraction, 255));
+}
 ARENA_API std::uint32_t arena_input(client* c, float thrust, float turn, int buttons) {
     return out_size(c->session.input(thrust, turn, static_cast<std::uint8_t>(buttons)));
 }
