@@ -270,7 +270,7 @@ void asteroids_rules::record_targets(const world::world& w) {
                           player_of_ship(b.id) != nullptr;
         if (rock || ship) targets.push_back({b.id, b.position, b.radius});
     }
-    history_.record(w.tick(), std::move(targets));  // bodies are in id order
+    history_.record(w.tick(), std::move(targets), w.config());  // bodies are in id order
 }
 
 template <class Hit>
@@ -285,7 +285,9 @@ void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
         const world::body* own = w.find(players_[b.owner].ship);
         uint32_t nearest = 0;
         world::real nearest_along = 2;
-        history_.rewound(w.tick(), b.rewind, w.config(), [&](const hit_history::target& t) {
+        const world::vec2 middle = from + step * 0.5f;
+        const world::real reach = step.norm() * 0.5f + bullet->radius;
+        history_.rewound_near(w.tick(), b.rewind, middle, reach, w.config(), [&](const hit_history::target& t) {
             if (own != nullptr && t.id == own->id) return;  // never its own ship
             if (!sweep_hits(from, step, t.position, t.radius + bullet->radius, w.config())) return;
             // Along the sweep: the first target in the bullet's way is the one it hits.

@@ -449,12 +449,15 @@ TEST_CASE("a rewound shot hits the target where its shooter saw it, and only the
 TEST_CASE("the hit history keeps a bounded past and interpolates between ticks", "[rules][lag]") {
     world::world_config c = world::asteroids_preset();
     rules::hit_history h;
-    for (uint32_t t = 1; t <= 200; ++t) h.record(t, {{7, vec2{static_cast<real>(t), 10}, 1}});
+    for (uint32_t t = 1; t <= 200; ++t)
+        h.record(t, {{7, vec2{static_cast<real>(t), 10}, 1}, {9, vec2{static_cast<real>(t), 300}, 1}}, c);
     CHECK(h.ticks() == rules::hit_history::depth);  // 66 ticks, however long it ran
     std::vector<rules::hit_history::target> seen;
     const auto at = [&](uint16_t rewind) {
         seen.clear();
-        h.rewound(200, rewind, c, [&](const rules::hit_history::target& t) { seen.push_back(t); });
+        // Near (190, 10): target 9, over 100 m away, is not even looked at.
+        h.rewound_near(200, rewind, vec2{190, 10}, 80, c,
+                       [&](const rules::hit_history::target& t) { seen.push_back(t); });
         REQUIRE(seen.size() == 1);
         return seen[0].position.x();
     };
