@@ -30,7 +30,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libfla
 # so these are installed only when there is no `npm` command.
 NPM_PACKAGES := nodejs npm
 
-.PHONY: all deps build timed-build run test test-fast bench bench-deps bench-e2e bench-loss clean fuzz lint-docker format format-check
+.PHONY: all deps build timed-build run test test-fast bench bench-deps bench-e2e bench-loss bench-hits clean fuzz lint-docker format format-check
 
 all: build
 
@@ -138,6 +138,10 @@ bench-e2e: build bench-deps
 # TCP and UDP under packet loss (nftables in a network namespace: root) and added latency.
 bench-loss: build bench-deps
 	./bench/loss.sh $(BUILD)/bin
+
+# Hit registration over UDP with 0 to 200 ms of round trip, lag compensation on and off (root).
+bench-hits: build bench-deps
+	./bench/hits.sh $(BUILD)/bin
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-* build-aarch64-*

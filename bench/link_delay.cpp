@@ -12,6 +12,9 @@
 // exist already as persistent TUN devices without packet information (`ip -n A tuntap add dev
 // NAME mode tun`), with their addresses and routes set up by the caller. It forwards until
 // SIGTERM or SIGINT, then prints what it forwarded on stderr.
+//
+// `--jitter-ms J` spreads each packet's hold uniformly over delay ± J, keeping the order (a
+// packet is never written before one read earlier: a link's queue, not a reordering path).
 #include <fcntl.h>
 #include <linux/if.h>
 #include <linux/if_tun.h>
@@ -28,6 +31,7 @@
 #include <cstring>
 #include <ctime>
 #include <deque>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -74,7 +78,7 @@ struct direction {
         time_ns due = 0;
         std::vector<std::uint8_t> bytes;
     };
-    std::deque<held> queue;  // in arrival order; one delay for all, so also in due order
+    std::deque<held> queue;  // in arrival order, and in due order (read_all keeps it)
     std::uint64_t forwarded = 0;
     std::uint64_t overflowed = 0;  // dropped because the queue was full
 };
@@ -84,7 +88,17 @@ struct direction {
 constexpr std::size_t max_held_packets = 100'000;
 constexpr std::size_t max_packet_bytes = 65'536;
 
-void read_all(direction& d, time_ns delay, std::vector<std::uint8_t>& buffer) {
+// The spread of each packet's hold (± ns, uniform), from a fixed seed: the same run twice.
+struct jitter {
+    time_ns spread = 0;
+    std::mt19937_64 rng{0x6a697474};
+    time_ns next() {
+        if (spread == 0) return 0;
+        return std::uniform_int_distribution<time_ns>(-spread, spread)(rng);
+    }
+};
+
+void read_all(direction& d, time_ns delay, jitter& j, std::vector<std::uint8_t>& buffer) {
     for (;;) {
         const ssize_t n = read(d.from, buffer.data(), buffer.size());
         if (n <= 0) return;  // EAGAIN: nothing more for now
@@ -92,7 +106,9 @@ void read_all(direction& d, time_ns delay, std::vector<std::uint8_t>& buffer) {
             ++d.overflowed;
             continue;
         }
-        d.queue.push_back({monotonic_now() + delay, {buffer.begin(), buffer.begin() + n}});
+        time_ns due = monotonic_now() + std::max<time_ns>(0, delay + j.next());
+        if (!d.queue.empty()) due = std::max(due, d.queue.back().due);  // in order
+        d.queue.push_back({due, {buffer.begin(), buffer.begin() + n}});
     }
 }
 
@@ -117,6 +133,10 @@ int main(int argc, char** argv) {
     app.add_option("--delay-ms", delay_ms, "ms every packet is held, each way")
         ->check(CLI::Range(0.0, 10000.0))
         ->capture_default_str();
+    double jitter_ms = 0;
+    app.add_option("--jitter-ms", jitter_ms, "ms each packet's hold varies by, ± (uniform), each way; order kept")
+        ->check(CLI::Range(0.0, 10000.0))
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     const int here = open_tun(device, "this namespace");
@@ -139,8 +159,10 @@ int main(int argc, char** argv) {
     direction back;
     back.from = there;
     back.to = here;
+    jitter spread;
+    spread.spread = static_cast<time_ns>(jitter_ms * 1e6);
     std::vector<std::uint8_t> buffer(max_packet_bytes);  // one packet read at a time
-    std::printf("link-delay ready: %s, %.1f ms each way\n", device.c_str(), delay_ms);
+    std::printf("link-delay ready: %s, %.1f ms each way, ± %.1f ms\n", device.c_str(), delay_ms, jitter_ms);
     std::fflush(stdout);
 
     while (!stop_requested) {
@@ -155,8 +177,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "arena-link-delay: poll: %s\n", std::strerror(errno));
             return 1;
         }
-        if (fds[0].revents & POLLIN) read_all(out, delay, buffer);
-        if (fds[1].revents & POLLIN) read_all(back, delay, buffer);
+        if (fds[0].revents & POLLIN) read_all(out, delay, spread, buffer);
+        if (fds[1].revents & POLLIN) read_all(back, delay, spread, buffer);
         const time_ns after = monotonic_now();
         write_due(out, after);
         write_due(back, after);

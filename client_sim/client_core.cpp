@@ -1,10 +1,14 @@
 #include "client_sim/client_core.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "client_sim/wire.hpp"
+#include "games/asteroids/asteroids_params.hpp"
+#include "games/asteroids/asteroids_rules.hpp"
 #include "games/registry.hpp"
+#include "server/rules/hit_history.hpp"
 
 namespace arena::bots {
 
@@ -27,6 +31,15 @@ void keep_values(std::map<Owner, client_core::declared_values>& held, std::span<
 // The first `fields` of `held`: a declared line as a scoreboard keeps it.
 std::vector<std::int32_t> first_fields(const client_core::declared_values& held, std::size_t fields) {
     return std::vector<std::int32_t>(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(fields));
+}
+
+// The circle around a body's shape (m), as the server's hit history keeps a target: every shape
+// is a core of vertices swept by a disc of `radius` (a circle's one vertex is its centre).
+float bounding_radius(const protocol::shape_desc& shape) {
+    float core2 = 0;
+    for (std::size_t i = 0; i < shape.vertex_count && i < protocol::max_shape_vertices; ++i)
+        core2 = std::max(core2, shape.xy[2 * i] * shape.xy[2 * i] + shape.xy[2 * i + 1] * shape.xy[2 * i + 1]);
+    return std::sqrt(core2) + shape.radius;
 }
 
 }  // namespace
@@ -107,6 +120,9 @@ void client_core::on_welcome() {
         if (const rules::game_definition* game = games::find(session_.config()->rules); game && game->make_bot)
             game_bot_ = game->make_bot(params_.seed, params_.index);
     phase_ = phase::playing;
+    // Hit registration: Asteroids' targets (ships and rocks), for a player that plays fair.
+    judge_hits_ = session_.config()->rules == "asteroids" && !outcome_.misbehaving;
+    hits_.set_window(session_.tick_rate());  // a second of ticks
     outcome_.joined = true;
     shared_.on_joined(session_.welcome());
 }
@@ -141,6 +157,8 @@ void client_core::on_snapshot(std::size_t frame_bytes, time_ns now) {
         m.delta_payload_bytes += session_.delta_bytes();
         m.delta_bodies += session_.view().size();
     }
+    if (first_view_tick_ == 0) first_view_tick_ = session_.view_tick();
+    hits_.advance(session_.view_tick());
     const std::vector<protocol::BodyState>& bodies = session_.view();
     m.bodies_in_view.add(static_cast<double>(bodies.size()));
     m.view_bodies += bodies.size();
@@ -171,6 +189,10 @@ void client_core::take_game() {
         if (e.sequence <= last) continue;  // taken from an earlier snapshot
         last = e.sequence;
         ++m.game_events;
+        const std::uint32_t me = session_.player_id();
+        if (e.kind == protocol::GameEventKind::rock_hit && e.player == me) hits_.server_hit(e.body, e.tick);
+        if (e.kind == protocol::GameEventKind::ship_destroyed && e.other == me) hits_.server_hit(e.body, e.tick);
+        if (e.kind == protocol::GameEventKind::respawn) respawned_[e.body] = e.tick;
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
     }
@@ -267,8 +289,50 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
     else
         ++shared_.metrics().inputs_left_out;
     if (phase_ == phase::ended) return;
+    if (judge_hits_) claim_hits();
     // One Ping a second, cores spread over the second so the Pongs do not come in a burst.
     if ((tick + params_.index) % session_.tick_rate() == 0) append_ping(shared_.encoder(), now, pending_);
+}
+
+bool client_core::invulnerable(std::uint32_t ship, std::uint32_t tick) const {
+    // Asteroids' default span (asteroids_params::invulnerable_ticks: 2 s) after a respawn, and
+    // after the first view for the ships that joined with this player (joins are not events).
+    const std::uint32_t span = 2u * session_.tick_rate();
+    if (tick < first_view_tick_ + span) return true;
+    const auto it = respawned_.find(ship);
+    return it != respawned_.end() && tick < it->second + span;
+}
+
+void client_core::claim_hits() {
+    const world::world_config& config = *session_.config();
+    const std::uint32_t tick = session_.view_tick();
+    const std::vector<protocol::BodyState>& view = session_.view();
+    if (view.empty()) return;
+    const world::real bullet_radius = rules::asteroids_params{}.bullet_radius;
+    for (const own_bullet& b : session_.own_bullets()) {
+        if (hits_.has_claimed(b.sequence)) continue;
+        // The bullet's sweep over the tick that brought it here, as the server judges it.
+        const world::vec2 to{b.x, b.y};
+        const world::vec2 step = world::vec2{b.vx, b.vy} * config.dt;
+        const world::vec2 from = to - step;
+        std::uint32_t nearest = 0;
+        world::real nearest_along = 2;
+        for (const protocol::BodyState& t : view) {
+            if (t.id() == session_.entity_id() || hits_.taken(t.id())) continue;
+            const protocol::shape_desc* shape = session_.shape_of(t.id());
+            if (shape == nullptr || (shape->kind != rules::kind_ship && shape->kind != rules::kind_rock)) continue;
+            if (shape->kind == rules::kind_ship && invulnerable(t.id(), tick)) continue;
+            const world::vec2 centre{t.x(), t.y()};
+            if (!rules::sweep_hits(from, step, centre, bounding_radius(*shape) + bullet_radius, config)) continue;
+            const world::vec2 d = world::displacement(from, centre, config);
+            const world::real along = step.squaredNorm() > 0 ? d.dot(step) / step.squaredNorm() : 0;
+            if (along < nearest_along) {
+                nearest_along = along;
+                nearest = t.id();
+            }
+        }
+        if (nearest != 0) hits_.claim(b.sequence, nearest, tick);
+    }
 }
 
 void client_core::send_input(const world::player_input& input) {
@@ -350,6 +414,7 @@ void client_core::end(end_kind kind, const std::string& reason) {
     const bool was_playing = phase_ == phase::playing;
     phase_ = phase::ended;
     record_scoreboard();
+    hits_.finish(session_.view_tick());
     outcome_.ended = true;
     outcome_.reason = reason;
     outcome_.ended_early = !shared_.stopping();
@@ -367,6 +432,9 @@ void client_core::add_final_figures(fleet_metrics& m) const {
         m.own_shots.unconfirmed += shots.unconfirmed;
         m.own_shots.unpredicted += shots.unpredicted;
     }
+    m.hits.claimed += hits_.counts().claimed;
+    m.hits.confirmed += hits_.counts().confirmed;
+    m.hits.unclaimed_hits += hits_.counts().unclaimed_hits;
     if (snapshots_ < 2) return;
     const double seconds = static_cast<double>(last_snapshot_at_ - first_snapshot_at_) / 1e9;
     if (seconds > 0) m.snapshots_per_s_per_bot.add(static_cast<double>(snapshots_ - 1) / seconds);

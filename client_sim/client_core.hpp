@@ -25,6 +25,7 @@
 #include "client_sim/behavior.hpp"
 #include "client_sim/client_shared.hpp"
 #include "client_sim/game_bot.hpp"
+#include "client_sim/hit_registration.hpp"
 #include "client_sim/metrics.hpp"
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
@@ -135,6 +136,9 @@ public:
     [[nodiscard]] std::uint32_t last_ack() const { return session_.last_ack(); }
     // The tick of the newest snapshot applied (0 before one).
     [[nodiscard]] std::uint32_t last_snapshot_tick() const { return session_.last_tick(); }
+    // Hit registration (hit_registration.hpp): the hits this player saw and the server's
+    // verdicts; Asteroids only, well-behaved players only, settled when the session ends.
+    [[nodiscard]] const hit_counts& hits() const { return hits_.counts(); }
     // Figures that need the whole run (this core's snapshot rate) into the metrics.
     void add_final_figures(fleet_metrics& metrics) const;
 
@@ -154,6 +158,10 @@ private:
     // Counts the newest view's bodies this client holds no shape for.
     void check_shapes(std::span<const protocol::BodyState> bodies);
 
+    // Claims the hits the own bullets make now on the targets of the newest view.
+    void claim_hits();
+    // A ship that respawned within the last invulnerable span (no target on the server).
+    [[nodiscard]] bool invulnerable(std::uint32_t ship, std::uint32_t tick) const;
     void send_input(const world::player_input& input);
     // Does this core's fault once it is due; true when it replaces this tick's input.
     bool misbehave();
@@ -185,6 +193,11 @@ private:
     // Datagrams: the newest inputs sent, oldest first, repeated in the next Inputs.
     std::array<protocol::earlier_input, protocol::max_earlier_inputs> recent_inputs_{};
     std::size_t recent_count_ = 0;
+
+    bool judge_hits_ = false;  // Asteroids, well-behaved
+    hit_registration hits_;
+    std::uint32_t first_view_tick_ = 0;
+    std::map<std::uint32_t, std::uint32_t> respawned_;  // ship body id -> tick of its respawn
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "client_sim/hit_registration.hpp"
 #include "client_sim/own_shots.hpp"
 #include "client_sim/stats.hpp"
 #include "protocol/game.hpp"
@@ -77,6 +78,7 @@ struct fleet_metrics {
     std::uint64_t game_events = 0;           // events taken (each once per client)
     std::uint64_t bodies_without_shape = 0;  // bodies in a decoded view whose shape the bot did not hold
     shot_counts own_shots;                   // predicted own shots, as matched (well-behaved bots, at the end)
+    hit_counts hits;                         // hit registration (hit_registration.hpp; well-behaved bots, at the end)
 
     // The current second, for the progress line; rolled over by the fleet's reporter.
     std::uint64_t interval_bytes_in = 0;

@@ -200,6 +200,7 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
         r.prediction_exact_share =
             static_cast<double>(m.predictions_exact) / static_cast<double>(m.prediction_error_m.size());
     r.own_shots = m.own_shots;
+    r.hits = m.hits;
     if (const std::uint64_t matched = m.own_shots.exact + m.own_shots.with_error; matched != 0)
         r.own_shot_exact_share = static_cast<double>(m.own_shots.exact) / static_cast<double>(matched);
     r.figures = {
@@ -271,6 +272,14 @@ std::string summary_table(const final_report& r) {
         static_cast<unsigned long long>(shots.exact + shots.with_error), p99_m * 1e3,
         p99_m <= quantum_m ? "within" : "beyond", quantum_m * 1e3, 100.0 * r.own_shot_exact_share,
         static_cast<unsigned long long>(shots.unconfirmed), static_cast<unsigned long long>(shots.unpredicted));
+    const hit_counts& hits = r.hits;
+    const std::uint64_t server_hits = hits.confirmed + hits.unclaimed_hits;
+    out += format(
+        "hit registration: %llu claimed, %.1f %% confirmed, %llu unclaimed server hits (%.1f %%)\n",
+        static_cast<unsigned long long>(hits.claimed),
+        hits.claimed != 0 ? 100.0 * static_cast<double>(hits.confirmed) / static_cast<double>(hits.claimed) : 0.0,
+        static_cast<unsigned long long>(hits.unclaimed_hits),
+        server_hits != 0 ? 100.0 * static_cast<double>(hits.unclaimed_hits) / static_cast<double>(server_hits) : 0.0);
     out += format(
         "totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu inputs_left_out=%llu\n",
         static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
@@ -349,6 +358,8 @@ nlohmann::json to_json(const final_report& r) {
           {"unconfirmed", r.own_shots.unconfirmed},
           {"unpredicted", r.own_shots.unpredicted},
           {"exact_share", r.own_shot_exact_share}}},
+        {"hit_registration",
+         {{"claimed", r.hits.claimed}, {"confirmed", r.hits.confirmed}, {"unclaimed_hits", r.hits.unclaimed_hits}}},
         {"rejects", tally_json(r.rejects)},
         {"disconnects", tally_json(r.disconnects)},
         {"misbehaving_drops", tally_json(r.misbehaving_drops)},

@@ -35,6 +35,9 @@ struct final_report {
     // Own shots (Asteroids, own_shots.hpp): how the predicted ones matched the server's, and the
     // share of matched ones whose spawn was bit-exact ([0, 1]; 0 when none matched).
     shot_counts own_shots;
+    // Hit registration (hit_registration.hpp): hits the bots saw, those the server confirmed,
+    // and the server's hits by them that they never saw.
+    hit_counts hits;
     double own_shot_exact_share = 0;
     std::uint64_t snapshot_bytes = 0;  // every snapshot frame received
     std::uint64_t view_bodies = 0;     // bodies in those snapshots

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# make bench-hits: hit registration (client_sim/hit_registration.hpp) over UDP with added latency,
+# lag compensation on and off. Asteroids, hunter bots; each run gets two network namespaces
+# joined by arena-link-delay (as make bench-loss: bench/loss.sh), holding every packet half the
+# round trip each way, ± HITS_JITTER_MS / 2 (uniform, order kept; none at round trip 0). One
+# table: claimed hits the server confirmed (%), server hits the shooter never claimed (% of
+# server hits).
+# Env: HITS_RTT_MS ("0 50 100 200"), HITS_JITTER_MS (10, on the round trip), HITS_COMPENSATION_MS
+#      ("250 0": --lag-compensation-ms), HITS_SECONDS (20), HITS_BOTS (16), HITS_WORK (a folder
+#      that keeps each run's bots' --json LABEL.json; default: a temporary one, removed),
+#      HITS_NICE (-10).
+set -euo pipefail
+bin=${1:-build/bin}
+here=$(cd "$(dirname "$0")" && pwd)
+rtts=${HITS_RTT_MS:-0 50 100 200}
+jitter=${HITS_JITTER_MS:-10}
+compensations=${HITS_COMPENSATION_MS:-250 0}
+seconds=${HITS_SECONDS:-20}
+bots=${HITS_BOTS:-16}
+[ "$(id -u)" = 0 ] || { echo "bench-hits: needs root (ip netns)" >&2; exit 1; }
+keep=${HITS_WORK:-}
+if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-hits.XXXXXX); fi
+# The link, the server and the bots run ahead of anything else on a shared machine (a compiler
+# at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
+priority=${HITS_NICE:--10}
+server_ns=arena-hits-server-$$
+bots_ns=arena-hits-bots-$$
+server_address=10.78.0.1
+bots_address=10.78.0.2
+link=""
+drop_namespaces() {
+  if [ -n "$link" ]; then kill -TERM "$link" 2>/dev/null || true; wait "$link" 2>/dev/null || true; link=""; fi
+  ip netns del "$server_ns" 2>/dev/null || true
+  ip netns del "$bots_ns" 2>/dev/null || true
+}
+cleanup() { drop_namespaces; [ -n "$keep" ] || rm -rf "$work"; }
+trap cleanup EXIT
+
+# connect DELAY_MS JITTER_MS LABEL: the two namespaces and their link (each way).
+connect() {
+  local latency=$1 spread=$2 label=$3 ns
+  drop_namespaces
+  for ns in "$server_ns" "$bots_ns"; do
+    ip netns add "$ns"
+    ip -n "$ns" link set lo up
+    ip -n "$ns" tuntap add dev arena0 mode tun
+  done
+  ip -n "$server_ns" addr add "$server_address/30" dev arena0
+  ip -n "$bots_ns" addr add "$bots_address/30" dev arena0
+  : > "$work/$label.link"
+  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" --jitter-ms "$spread" \
+    > "$work/$label.link" 2>&1 &
+  link=$!
+  for _ in $(seq 100); do grep -q "^link-delay ready" "$work/$label.link" && break; sleep 0.05; done
+  grep -q "^link-delay ready" "$work/$label.link" || { echo "arena-link-delay did not start" >&2; cat "$work/$label.link" >&2; return 1; }
+  ip -n "$server_ns" link set arena0 up
+  ip -n "$bots_ns" link set arena0 up
+}
+
+# run RTT_MS COMPENSATION_MS LABEL: one Asteroids server and its hunters, each in its namespace.
+run() {
+  local rtt=$1 compensation=$2 label=$3
+  local spread
+  spread=$(awk -v r="$rtt" -v j="$jitter" 'BEGIN { print (r > 0 ? j / 2 : 0) }')
+  connect "$(awk -v r="$rtt" 'BEGIN { print r / 2 }')" "$spread" "$label"
+  : > "$work/$label.out"  # before the server starts: the background job opens it later
+  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
+    --max-players "$bots" --duration $((seconds + 30)) --preset asteroids --lag-compensation-ms "$compensation" \
+    > "$work/$label.out" 2> "$work/$label.log" &
+  local server=$! port=""
+  for _ in $(seq 100); do
+    port=$(sed -n "s/^udp listening on .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true); [ -n "$port" ] && break; sleep 0.1
+  done
+  [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
+  ip netns exec "$bots_ns" nice -n "$priority" "$bin/arena-bots" --transport udp --host "$server_address" --port "$port" \
+    --bots "$bots" --behavior hunter --duration "$seconds" --connect-rate 100 --seed 1 --quiet --json "$work/$label.json" \
+    > "$work/$label.bots.out" 2>&1 || true
+  kill -TERM "$server" 2>/dev/null || true
+  wait "$server" || true
+  drop_namespaces
+}
+
+labels=()
+for rtt in $rtts; do
+  for compensation in $compensations; do
+    label="$rtt-$compensation"
+    run "$rtt" "$compensation" "$label"
+    labels+=("$label")
+  done
+done
+python3 "$here/hits_table.py" "$work" "$jitter" "${labels[@]}"

@@ -1,0 +1,71 @@
+#include "client_sim/hit_registration.hpp"
+
+#include <algorithm>
+
+namespace arena::bots {
+
+namespace {
+
+bool within(std::uint32_t a, std::uint32_t b, std::uint32_t window) {
+    return (a > b ? a - b : b - a) <= window;
+}
+
+}  // namespace
+
+void hit_registration::claim(std::uint32_t sequence, std::uint32_t target, std::uint32_t tick) {
+    if (has_claimed(sequence)) return;
+    claimed_sequences_.push_back(sequence);
+    // A bullet lives a few seconds at most: an old sequence cannot claim again.
+    constexpr std::size_t kept = 256;
+    if (claimed_sequences_.size() > kept) claimed_sequences_.erase(claimed_sequences_.begin());
+    taken_.push_back(target);
+    if (taken_.size() > kept) taken_.erase(taken_.begin());
+    ++counts_.claimed;
+    const auto hit = std::find_if(hits_.begin(), hits_.end(), [&](const pending& h) {
+        return h.target == target && within(h.tick, tick, window_);
+    });
+    if (hit != hits_.end()) {
+        hits_.erase(hit);
+        ++counts_.confirmed;
+        return;
+    }
+    claims_.push_back({target, tick});
+}
+
+bool hit_registration::has_claimed(std::uint32_t sequence) const {
+    return std::find(claimed_sequences_.begin(), claimed_sequences_.end(), sequence) != claimed_sequences_.end();
+}
+
+bool hit_registration::taken(std::uint32_t target) const {
+    return std::find(taken_.begin(), taken_.end(), target) != taken_.end();
+}
+
+void hit_registration::server_hit(std::uint32_t target, std::uint32_t tick) {
+    const auto claim = std::find_if(claims_.begin(), claims_.end(), [&](const pending& c) {
+        return c.target == target && within(c.tick, tick, window_);
+    });
+    if (claim != claims_.end()) {
+        claims_.erase(claim);
+        ++counts_.confirmed;
+        return;
+    }
+    hits_.push_back({target, tick});
+}
+
+void hit_registration::advance(std::uint32_t tick) {
+    const auto closed = [&](const pending& p) {
+        return p.tick + window_ < tick;
+    };
+    std::erase_if(claims_, closed);  // claimed, never confirmed
+    counts_.unclaimed_hits += static_cast<std::uint64_t>(std::erase_if(hits_, closed));
+}
+
+void hit_registration::finish(std::uint32_t tick) {
+    advance(tick);
+    counts_.claimed -= claims_.size();
+    claims_.clear();
+    counts_.unclaimed_hits += hits_.size();
+    hits_.clear();
+}
+
+}  // namespace arena::bots
