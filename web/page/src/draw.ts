@@ -43,6 +43,29 @@ export interface Flash {
   colour: string;
 }
 
+/** A hit of this player's that the server confirmed (a GameEvent), drawn for `life` ms as a
+ *  magenta X in a dashed ring at the target: unlike the flashes, which show what happened to
+ *  whomever, it says "your shot counted". */
+export interface HitMarker {
+  x: number;
+  y: number;
+  born: number;
+  life: number;
+  /** The target's radius, m. */
+  radius: number;
+}
+
+/** ?debug=lag: one shot's targets as the view its input carried showed them (what the server
+ *  rewinds to), drawn as outlined circles fading over `life` ms. */
+export interface LagShot {
+  born: number;
+  life: number;
+  targets: { x: number; y: number; radius: number }[];
+}
+
+export const HIT_COLOUR = '#ff3df2';
+export const LAG_COLOUR = '#4dff9a';
+
 // The kinds a server that sends no manifest means (Asteroids' before manifests); a game's own
 // tags come from its manifest (setTags).
 export const KIND_SHIP = 1;
@@ -95,8 +118,10 @@ export class Painter {
 
   /** `player`: the own player's id; its ship is drawn in gold, predicted or not. `span`: metres
    *  across the canvas's shorter side (a spectator sees the whole world). */
+  /** `hits`: the confirmed hits' markers; `lagShots`: ?debug=lag's overlay. Returns the overlay's
+   *  shapes drawn. */
   frame(world: World, player: number, centre: { x: number; y: number }, statics: StaticBody[], bodies: Body[], flashes: Flash[], now: number,
-    span = VIEW_METRES): void {
+    span = VIEW_METRES, hits: HitMarker[] = [], lagShots: LagShot[] = []): number {
     const { canvas, g } = this;
     const dpr = window.devicePixelRatio || 1;
     const w = Math.round(canvas.clientWidth * dpr);
@@ -126,8 +151,57 @@ export class Painter {
     for (const s of statics) this.body(s.x, s.y, s.angle, s.shape, '#556', '#334');
     for (const b of bodies) this.drawBody(b);
     for (const f of flashes) this.flash(f, now);
+    let lagShapes = 0;
+    for (const s of lagShots) lagShapes += this.lagShot(s, now);
+    for (const m of hits) this.hitMarker(m, now);
     const drewForeground = view !== null && this.callGamePage('drawForeground', view);
     if (drewBackground || drewForeground) ++this.gamePageFrames;
+    return lagShapes;
+  }
+
+  /** A confirmed hit: an X across the target in a dashed ring, closing onto it as it fades. */
+  private hitMarker(m: HitMarker, now: number): void {
+    const t = (now - m.born) / m.life;
+    if (t < 0 || t > 1) return;
+    const { g } = this;
+    const [sx, sy] = this.toScreen(m.x, m.y);
+    const r = Math.max(6, (m.radius + 1.5) * (1.4 - 0.6 * t) * this.scale);
+    g.save();
+    g.globalAlpha = 1 - t * t;
+    g.strokeStyle = HIT_COLOUR;
+    g.lineWidth = Math.max(2, this.scale * 0.35);
+    g.lineCap = 'round';
+    g.beginPath();
+    const d = r * 0.7;
+    g.moveTo(sx - d, sy - d);
+    g.lineTo(sx + d, sy + d);
+    g.moveTo(sx + d, sy - d);
+    g.lineTo(sx - d, sy + d);
+    g.stroke();
+    g.setLineDash([4, 4]);
+    g.beginPath();
+    g.arc(sx, sy, r, 0, 2 * Math.PI);
+    g.stroke();
+    g.restore();
+  }
+
+  /** ?debug=lag: a shot's targets as the view it carried had them, outlined; how many drawn. */
+  private lagShot(s: LagShot, now: number): number {
+    const t = (now - s.born) / s.life;
+    if (t < 0 || t > 1) return 0;
+    const { g } = this;
+    g.save();
+    g.globalAlpha = 1 - t;
+    g.strokeStyle = LAG_COLOUR;
+    g.lineWidth = Math.max(1, this.scale * 0.12);
+    for (const b of s.targets) {
+      const [sx, sy] = this.toScreen(b.x, b.y);
+      g.beginPath();
+      g.arc(sx, sy, Math.max(2, b.radius * this.scale), 0, 2 * Math.PI);
+      g.stroke();
+    }
+    g.restore();
+    return s.targets.length;
   }
 
   /** Runs one call of the game's page module, if it has it; whether it ran. A module that

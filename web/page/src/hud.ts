@@ -101,6 +101,10 @@ export class Hud {
   private readonly error = el('prediction-error');
   private readonly leftOut = el('left-out');
   private readonly status = el('status');
+  private readonly hits = el('hits');
+
+  private hitStreak = 0;
+  private hitTimer: ReturnType<typeof setTimeout> | null = null;
 
   private shown = 0;
   private game: Manifest | null = null;
@@ -179,6 +183,22 @@ export class Hud {
     this.score.dataset.value = String(me?.score ?? 0);
     this.lives.textContent = me ? (me.state === 2 ? 'out' : String(me.lives)) : '–';
     this.board.replaceChildren(...boardRows(null, own, lines, new Map(), this.tickRate));
+  }
+
+  /** A hit of this player's the server confirmed: "hit" (×n for a run of them) shown for
+   *  1.2 s from the last one; data-total holds every confirmed hit. */
+  hitConfirmed(total: number): void {
+    ++this.hitStreak;
+    this.hits.textContent = this.hitStreak > 1 ? `hit ×${this.hitStreak}` : 'hit';
+    this.hits.dataset.total = String(total);
+    this.hits.dataset.streak = String(this.hitStreak);
+    this.hits.hidden = false;
+    if (this.hitTimer !== null) clearTimeout(this.hitTimer);
+    this.hitTimer = setTimeout(() => {
+      this.hits.hidden = true;
+      this.hitStreak = 0;
+      this.hitTimer = null;
+    }, 1200);
   }
 
   figures(pingMs: number | null, snapshotsPerSecond: number, predictionErrorM: number | null, inputsLeftOut: number): void {

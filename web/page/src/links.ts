@@ -17,6 +17,9 @@ export interface PageQuery {
   match: string;
   /** ?mode=NAME: join or create a match of that mode (Hello.mode); '' when absent. */
   mode: string;
+  /** ?debug=lag (a comma-separated list): draws the targets of the player's last shots as the
+   *  view each shot's input carried, the world the server rewinds to judge it. */
+  debugLag: boolean;
 }
 
 export function readQuery(search: string): PageQuery {
@@ -29,6 +32,7 @@ export function readQuery(search: string): PageQuery {
     token: text('token'),
     match: text('match'),
     mode: text('mode'),
+    debugLag: params.getAll('debug').some((v) => v.split(',').map((w) => w.trim()).includes('lag')),
   };
 }
 

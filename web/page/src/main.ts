@@ -7,11 +7,15 @@
 // server's default match; ?lobby shows the lobby (src/lobby.ts) instead of the game.
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 // A game with a page module of its own (games/NAME/page.ts, game_page.ts) draws with it too.
+// A hit of this player's that the server confirms (a GameEvent naming it as the shooter) shows
+// as a magenta X at the target and "hit" under the centre; ?debug=lag draws, for the player's
+// last shots, the targets as the view that shot's input carried showed them: the world the
+// server rewinds to judge the shot (docs/LAG_COMPENSATION.md).
 import { gamePages } from '@arena/game-pages';
 import { connect } from './arena-sdk.mjs';
 import type { ConnectOptions } from './arena-sdk.mjs';
-import { Controls } from './controls.js';
-import { Body, Flash, KIND_BULLET, KIND_SHIP, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
+import { BUTTON_FIRE, Controls } from './controls.js';
+import { Body, Flash, HitMarker, KIND_BULLET, KIND_SHIP, LagShot, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
 import { Manifest, eventText, resultText, teamColour, teamField } from './game.js';
 import { findGamePage, readWorldConfig } from './game_page.js';
 import { Hud, Line } from './hud.js';
@@ -19,6 +23,14 @@ import { PageQuery, inviteLink, lobbyLink, readQuery } from './links.js';
 import { LobbyState, newLobbyState, showLobby } from './lobby.js';
 
 const FLASH_MS = 600;
+const HIT_MS = 500;
+/** ?debug=lag: the drawn views kept (about two seconds of frames at 60 a second: more than the
+ *  server's 250 ms cap and any interpolation delay), the shots shown, and how long each shows. */
+const LAG_VIEWS = 120;
+const LAG_SHOTS = 6;
+const LAG_MS = 1000;
+/** ?debug=lag: while the fire button is held, a shot is shown at most this often (ms). */
+const LAG_EVERY_MS = 200;
 const SAMPLES = 4096;
 
 function keep(samples: number[], value: number): void {
@@ -68,6 +80,15 @@ interface PageState {
    *  it drew. */
   gamePage: string;
   gamePageFrames: number;
+  /** Hits of this player's the server confirmed (GameEvents: a rock_hit by it, a ship_destroyed
+   *  with it as `other`), each drawn as a hit marker. */
+  hitsConfirmed: number;
+  /** ?debug=lag: whether it is on, the shots it showed, and the outlined targets it drew (summed
+   *  over the frames, and in the last frame). */
+  debugLag: boolean;
+  lagShots: number;
+  lagShapesDrawn: number;
+  lagShapes: number;
 }
 
 declare global {
@@ -81,6 +102,7 @@ function newPageState(spectating: boolean): PageState {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
     bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [], gamePage: '', gamePageFrames: 0,
+    hitsConfirmed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0,
   };
 }
 
@@ -100,6 +122,7 @@ function joiningText(query: PageQuery, name: string): string {
 async function main(): Promise<void> {
   const query = readQuery(location.search);
   const page = newPageState(query.spectate && !query.lobby);
+  page.debugLag = query.debugLag && !query.spectate;
   window.arenaPage = page;
   if (query.lobby) {
     page.lobby = newLobbyState();
@@ -138,6 +161,26 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
   let unrendered: number | null = null; // when the oldest snapshot not yet drawn arrived
   // Where each body was last drawn: a game event names a body, not a place.
   const lastSeen = new Map<number, { x: number; y: number; r: number }>();
+  let hits: HitMarker[] = [];
+  // ?debug=lag: the last LAG_VIEWS views drawn, each with its moment (tick × 256 + fraction, as
+  // the SDK tells the inputs) and the other bodies in it; the shots shown.
+  const views: { moment: number; targets: { x: number; y: number; radius: number }[] }[] = [];
+  let lagShots: LagShot[] = [];
+  let lastLagShot = -Infinity;
+  // The body kind of a bullet, which no shot aims at: the game's tag named "bullet", else
+  // Asteroids' kind when the server declares no tags.
+  const bulletKind = () => {
+    const tags = page.game?.bodyTags ?? [];
+    return tags.length === 0 ? KIND_BULLET : tags.find((t) => t.name === 'bullet')?.kind ?? -1;
+  };
+  // The Input.buttons bit that fires: the game's input named "fire" (Asteroids' bit 1), else
+  // the page's space bar (BUTTON_FIRE) when the server declares no inputs.
+  const fireMask = () => {
+    const inputs = page.game?.inputs ?? [];
+    if (inputs.length === 0) return BUTTON_FIRE;
+    const fire = inputs.find((i) => i.name === 'fire');
+    return fire ? 1 << fire.button : 0;
+  };
 
   const lines = (): Line[] => [...client.players.values()];
   const nameOf = (player: number) => client.players.get(player)?.name || (player === 0 ? 'nobody' : `#${player}`);
@@ -192,16 +235,39 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     if (page.records.length > 256) page.records.shift();
     hud.flashStatus(text);
   });
-  client.on('event', (e: { kind: number; body: number; player: number; size: number }) => {
+  client.on('event', (e: { kind: number; body: number; player: number; other: number; size: number }) => {
     ++page.events;
     const at = lastSeen.get(e.body);
     const born = performance.now();
+    // This player's hit, as the server judged it: a rock it shot, a ship it destroyed.
+    const mine = !spectating && page.playerId !== 0 && ((e.kind === 0 && e.player === page.playerId) || (e.kind === 1 && e.other === page.playerId && e.player !== page.playerId));
+    if (mine) {
+      ++page.hitsConfirmed;
+      hud.hitConfirmed(page.hitsConfirmed);
+      if (at) hits.push({ x: at.x, y: at.y, born, life: HIT_MS, radius: at.r });
+    }
     // rock_hit 0, ship_destroyed 1, respawn 2, wave 3 (protocol GameEventKind).
     if (e.kind === 1 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS * 2, radius: 3, colour: e.player === page.playerId ? '#ff5a4f' : '#ffa640' });
     else if (e.kind === 0 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS, radius: at.r, colour: '#c9d3e6' });
     else if (e.kind === 3) hud.flashStatus(`wave ${e.size}`);
     else if (e.kind === 2 && e.player === page.playerId) hud.flashStatus('respawned');
   });
+  // ?debug=lag: an input with the fire button held going out shows its view's targets (the
+  // view drawn at that moment: the one kept with that moment, else the nearest kept).
+  if (page.debugLag) {
+    client.on('input', (i: { buttons: number; tick: number; fraction: number }) => {
+      if ((i.buttons & fireMask()) === 0 || views.length === 0) return;
+      const born = performance.now();
+      if (born - lastLagShot < LAG_EVERY_MS) return;
+      lastLagShot = born;
+      const moment = i.tick * 256 + i.fraction;
+      let best = views[views.length - 1];
+      for (const v of views) if (Math.abs(v.moment - moment) < Math.abs(best.moment - moment)) best = v;
+      lagShots.push({ born, life: LAG_MS, targets: best.targets });
+      if (lagShots.length > LAG_SHOTS) lagShots.shift();
+      ++page.lagShots;
+    });
+  }
   client.on('bye', (b: { reason: string; matchOver: boolean; winner: number; scoreboard: Line[]; winningTeam?: number; winners?: number[] }) => {
     page.bye = b;
     if (b.scoreboard.length > 0 && !page.game) hud.players(page.playerId, b.scoreboard);
@@ -235,7 +301,18 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     for (const s of state.shots) bodies.push({ id: 0, owner: page.playerId, x: s.x, y: s.y, angle: 0, kind: KIND_BULLET, predicted: true });
     page.predictedShotsDrawn += state.shots.length;
     flashes = flashes.filter((f) => now - f.born < f.life);
-    painter.frame(world, page.playerId, centre, statics, bodies, flashes, now, span);
+    hits = hits.filter((m) => now - m.born < m.life);
+    if (page.debugLag && state.view) {
+      const bullet = bulletKind();
+      const targets = bodies
+        .filter((b) => !b.predicted && b.owner !== page.playerId && b.kind !== bullet && b.id !== 0)
+        .map((b) => ({ x: b.x, y: b.y, radius: b.shape?.radius ?? 1 }));
+      views.push({ moment: state.view.tick * 256 + state.view.fraction, targets });
+      if (views.length > LAG_VIEWS) views.shift();
+      lagShots = lagShots.filter((s) => now - s.born < s.life);
+    }
+    page.lagShapes = painter.frame(world, page.playerId, centre, statics, bodies, flashes, now, span, hits, lagShots);
+    page.lagShapesDrawn += page.lagShapes;
     page.drawn = bodies.length;
     page.gamePageFrames = painter.gamePageFrames;
     if (unrendered !== null) keep(page.arrivalToRender, performance.now() - unrendered);

@@ -3,6 +3,8 @@
 // the build put the page in build/web, beside bin/. A second page joins as a separate client
 // and watches the probe's ship in its own snapshots from the server; a third watches the match
 // as a spectator (/?spectate): no ship of its own, every body drawn, counted by the server.
+// On a second server, a player with ?debug=lag aims at rocks and fires: the server confirms its
+// hits (hit markers, the HUD's counter) and the overlay draws the targets each shot's view held.
 //   ARENA_SERVER   the arena-server binary       ARENA_CHROMIUM  the browser
 //   NODE_PATH      the page's node_modules (puppeteer-core, from web/page/package-lock.json)
 import { spawn } from 'node:child_process';
@@ -12,7 +14,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { need, puppeteer, sleep, until } from './browser.mjs';
+import { need, puppeteer, sleep, startServer, until } from './browser.mjs';
 
 const server = need('ARENA_SERVER');
 const chromium = need('ARENA_CHROMIUM');
@@ -49,13 +51,13 @@ after(async () => {
   rmSync(dir, { recursive: true, force: true });
 });
 
-async function open(name, query = '') {
+async function open(name, query = '', at = url) {
   const page = await browser.newPage();
   await page.setViewport({ width: 800, height: 600 });
   const problems = [];
   page.on('pageerror', (e) => problems.push(e.message));
   page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
-  await page.goto(`${url}?name=${name}${query}`);
+  await page.goto(`${at}?name=${name}${query}`);
   await until(`${name}'s welcome`, () => page.evaluate(() => window.arenaPage?.snapshots > 2 && window.arenaPage.playerId > 0)).catch((e) => {
     throw new Error(`${e.message}: ${problems.join('; ')}`);
   });
@@ -241,4 +243,74 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   console.log(`score ${line.score} on the HUD and in the server's --stats-json, ${line.shots} shots`);
   assert.deepEqual(problems, [], 'no errors in the page');
   assert.deepEqual(eyeProblems, [], 'no errors in the spectator\'s page');
+});
+
+test('confirmed hits are marked, and ?debug=lag draws the targets as each shot\'s view held them', { timeout: 60000 }, async () => {
+  // Rocks easier to hit (a wide bullet that flies 200 m, not 48: the nearest rock is often
+  // farther than that; a short cooldown) and a ship that is never out.
+  const config = join(dir, 'hits.json');
+  writeFileSync(config, JSON.stringify({ preset: 'asteroids', rules: 'asteroids',
+    rules_params: { bullet_radius: 1, bullet_lifetime_ticks: 300, fire_cooldown_ticks: 3, max_bullets_per_ship: 16, lives: 1000 } }));
+  const hits = await startServer(server, ['--port', '0', '--http-port', '0', '--config', config, '--drain-grace', '1']);
+  try {
+    const { page: shooter, problems } = await open('shooter', '&debug=lag', hits.url);
+    assert.equal(await shooter.evaluate(() => window.arenaPage.debugLag), true, '?debug=lag read');
+    // Turn towards the nearest rock (as the page draws it) and fire until the server confirms hits.
+    const aim = () => shooter.evaluate(() => {
+      const { client } = window.arenaPage;
+      const state = client.stateAt(performance.now());
+      const own = state.own;
+      const { width, height } = client.session.world;
+      if (!own) return null;
+      let best = null;
+      for (const b of state.bodies) {
+        if (b.kind !== 2) continue;
+        const dx = b.x - own.x - Math.round((b.x - own.x) / width) * width;
+        const dy = b.y - own.y - Math.round((b.y - own.y) / height) * height;
+        const d = Math.hypot(dx, dy);
+        if (!best || d < best.d) best = { d, bearing: Math.atan2(dy, dx) };
+      }
+      if (!best) return null;
+      const diff = best.bearing - own.angle;
+      return Math.atan2(Math.sin(diff), Math.cos(diff));
+    });
+    const confirmed = () => shooter.evaluate(() => window.arenaPage.hitsConfirmed);
+    await shooter.keyboard.down(' ');
+    let held = null;
+    for (const end = Date.now() + 20000; Date.now() < end && (await confirmed()) < 3;) {
+      const diff = await aim();
+      const want = diff === null || Math.abs(diff) < 0.05 ? null : diff > 0 ? 'ArrowLeft' : 'ArrowRight';
+      if (want !== held) {
+        if (held) await shooter.keyboard.up(held);
+        if (want) await shooter.keyboard.down(want);
+        held = want;
+      }
+      await sleep(30);
+    }
+    if (held) await shooter.keyboard.up(held);
+    const during = await shooter.evaluate(() => ({
+      hits: window.arenaPage.hitsConfirmed,
+      hud: document.getElementById('hits').dataset.total,
+      shown: !document.getElementById('hits').hidden,
+      lagShots: window.arenaPage.lagShots,
+      lagShapesDrawn: window.arenaPage.lagShapesDrawn,
+      serverHits: window.arenaPage.client.players.get(window.arenaPage.playerId)?.hits ?? 0,
+      view: window.arenaPage.client.viewMoment,
+      tick: window.arenaPage.client.session.viewTick,
+    }));
+    await shooter.keyboard.up(' ');
+    console.log(`the server confirmed ${during.hits} hits (its scoreboard: ${during.serverHits}); ?debug=lag showed ${during.lagShots} shots, ` +
+                `${during.lagShapesDrawn} outlined targets over the frames; the view drawn ${during.view ? during.tick - during.view.tick : '?'} ticks behind the newest snapshot`);
+    assert.ok(during.hits > 0, 'the server confirmed hits of the shooter');
+    assert.equal(Number(during.hud), during.hits, 'the HUD counts them');
+    assert.ok(during.lagShots > 0, 'the overlay showed shots');
+    assert.ok(during.lagShapesDrawn > 0, 'the overlay drew their targets');
+    assert.ok(during.view && during.view.tick < during.tick, 'the inputs carry a view behind the newest snapshot');
+    // The overlay fades: a second after the last shot it draws nothing.
+    await until('the overlay faded', () => shooter.evaluate(() => window.arenaPage.lagShapes === 0), 4000);
+    assert.deepEqual(problems, [], 'no errors in the page');
+    await shooter.close();
+  } finally {
+    if (hits.proc.exitCode === null) hits.proc.kill('SIGKILL');
+  }
 });

@@ -23,6 +23,7 @@ export interface CoreModule {
   _arena_error(session: number): number;
   _arena_hello(session: number, name: number, token: number): number;
   _arena_hello_to(session: number, name: number, token: number, match: number, mode: number): number;
+  _arena_set_view_moment(session: number, tick: number, fraction: number): void;
   _arena_input(session: number, thrust: number, turn: number, buttons: number): number;
   _arena_ping(session: number, clientTime: number): number;
   _arena_bye(session: number, reason: number): number;

@@ -82,6 +82,22 @@ export interface RenderState {
   /** The server time drawn for the interpolated bodies, ms. */
   serverTime: number;
   extrapolated: number;
+  /** The moment of the world drawn (the interpolated bodies'), as a tick and 1/256 ticks past
+   *  it: what the inputs sent from now on carry for lag compensation; null before a snapshot. */
+  view: ViewMoment | null;
+}
+
+/** A moment of the server's world: `tick` and `fraction`/256 of a tick past it. */
+export interface ViewMoment {
+  tick: number;
+  fraction: number;
+}
+
+/** An Input the client sent (the 'input' event): its sequence, its buttons, and the moment of
+ *  the world it carried (the view drawn last; before any draw, the newest snapshot's tick). */
+export interface SentInput extends ViewMoment {
+  sequence: number;
+  buttons: number;
 }
 
 interface Events {
@@ -92,6 +108,8 @@ interface Events {
   /** One of the game's declared events (Welcome.game.events[kind]), each once, in order. */
   record: GameRecord;
   pong: { rtt: number; serverTick: number };
+  /** Each Input as it goes out (not the ticks the pacing leaves out). */
+  input: SentInput;
   bye: ByeFields;
 }
 type Handler<T> = (value: T) => void;
@@ -115,6 +133,8 @@ export class ArenaClient {
   private lastEvent = 0;
   private done = false;
   private ownInView = false;
+  // The moment of the view stateAt drew last: what the player saw when pressing the keys.
+  private drawnMoment: ViewMoment | null = null;
   /** Round-trip time of the last Pong, ms. */
   rtt: number | null = null;
   readonly players = new Map<number, PlayerLine & { name: string }>();
@@ -174,11 +194,19 @@ export class ArenaClient {
     while (this.ticksSent < due) {
       ++this.ticksSent;
       const { thrust, turn, buttons } = this.controls;
+      // The moment of the world the player was looking at (lag compensation): before any
+      // draw, nothing is told and the core puts the newest snapshot's tick.
+      const moment = this.drawnMoment;
+      if (moment) this.session.setViewMoment(moment.tick, moment.fraction);
       const frame = this.session.input(thrust, turn, buttons);
       // Empty when there is nothing to send this tick: a tick the input pacing leaves out (the
       // server kept too many inputs waiting; the next one carries the next sequence). The
       // tick is spent all the same, so that the queue at the server is one shorter.
-      if (frame.length > 0) this.socket.send(frame);
+      if (frame.length > 0) {
+        this.socket.send(frame);
+        const sent = moment ?? { tick: this.session.viewTick, fraction: 0 };
+        this.emit('input', { sequence: this.session.lastSequence, buttons, tick: sent.tick, fraction: sent.fraction });
+      }
     }
     if (now - this.lastPing >= 1000) {
       this.lastPing = now;
@@ -189,8 +217,10 @@ export class ArenaClient {
   /** What to draw at `renderTime` (ms, the clock of options.now): the own body predicted and
    *  smoothed, every other body interpolated from the snapshot buffer. */
   stateAt(renderTime: number = this.now()): RenderState {
-    if (!this.welcome || !this.interpolator) return { bodies: [], own: null, shots: [], statics: [], serverTime: 0, extrapolated: 0 };
+    if (!this.welcome || !this.interpolator) return { bodies: [], own: null, shots: [], statics: [], serverTime: 0, extrapolated: 0, view: null };
     const sampled = this.interpolator.sample(renderTime);
+    const view = this.interpolator.size > 0 ? momentOf(sampled.moment, this.welcome.tickRate) : null;
+    if (view) this.drawnMoment = view;
     const own = this.session.entityId;
     const bodies: DrawBody[] = [];
     // The own bullets as the prediction has them now: drawn from the snapshots, they would lag
@@ -223,7 +253,12 @@ export class ArenaClient {
       ownBody = this.decorate({ id: own, owner: this.session.playerId, ...drawn }, true);
       bodies.push(ownBody);
     }
-    return { bodies, own: ownBody, shots, statics: this.welcome.statics, serverTime: sampled.serverTime, extrapolated: sampled.extrapolated };
+    return { bodies, own: ownBody, shots, statics: this.welcome.statics, serverTime: sampled.serverTime, extrapolated: sampled.extrapolated, view };
+  }
+
+  /** The moment of the view stateAt drew last, which the next inputs carry; null before any draw. */
+  get viewMoment(): ViewMoment | null {
+    return this.drawnMoment;
   }
 
   /** Ticks whose input was left out because the server kept too many waiting (input
@@ -352,6 +387,15 @@ export class ArenaClient {
     this.timer = null;
     this.emit('bye', bye);
   }
+}
+
+/** A server time (ms) as a tick and 1/256 ticks past it, rounded down; never below tick 0. */
+export function momentOf(serverTime: number, tickRate: number): ViewMoment {
+  const ticks = Math.max(0, (serverTime * tickRate) / 1000);
+  let tick = Math.floor(ticks);
+  let fraction = Math.floor((ticks - tick) * 256);
+  if (fraction > 255) { ++tick; fraction = 0; }
+  return { tick, fraction };
 }
 
 /** Connects to an Arena server's WebSocket endpoint (ws://host:http-port/ws) as `name`. */

@@ -1,8 +1,8 @@
 // Arena's browser SDK: the client core in WebAssembly and what a game draws with.
-export { connect, ArenaClient, PROTOCOL_ERROR_CLOSE_CODE } from './client.js';
+export { connect, ArenaClient, PROTOCOL_ERROR_CLOSE_CODE, momentOf } from './client.js';
 export { listModes, listMatches, getMatch, createMatch, joinOrCreate, join, create } from './lobby.js';
 export type { ModeInfo, MatchInfo, LobbyOptions } from './lobby.js';
-export type { ConnectOptions, SocketLike, Welcome, SnapshotEvent, DrawBody, RenderState } from './client.js';
+export type { ConnectOptions, SocketLike, Welcome, SnapshotEvent, DrawBody, RenderState, ViewMoment, SentInput } from './client.js';
 export { Core, Payload } from './core.js';
 export type { BodyState, Shape, StaticBody, ReplayResult, CoreModuleOptions } from './core.js';
 export { ReplayPlayer } from './player.js';

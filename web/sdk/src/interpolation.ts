@@ -36,6 +36,9 @@ export interface Sampled {
   serverTime: number;
   /** ms extrapolated past the newest snapshot (0 when interpolating). */
   extrapolated: number;
+  /** The server time of the world drawn, ms: serverTime held to the buffer (the oldest
+   *  snapshot before it, the newest plus the extrapolation past it); 0 with no snapshot. */
+  moment: number;
 }
 
 export class Interpolator {
@@ -98,20 +101,20 @@ export class Interpolator {
       this.delayValue += Math.sign(this.targetDelay() - this.delayValue) * step;
     }
     this.lastRender = renderTime;
-    if (this.entries.length === 0) return { bodies: [], serverTime: 0, extrapolated: 0 };
+    if (this.entries.length === 0) return { bodies: [], serverTime: 0, extrapolated: 0, moment: 0 };
     const offset = Math.min(...this.offsets);
     const t = renderTime - offset - this.delayValue;
 
     const first = this.entries[0];
     const newest = this.entries[this.entries.length - 1];
-    if (t <= first.time) return { bodies: [...first.bodies.values()], serverTime: t, extrapolated: 0 };
+    if (t <= first.time) return { bodies: [...first.bodies.values()], serverTime: t, extrapolated: 0, moment: first.time };
     if (t >= newest.time) {
       const ahead = Math.min(t - newest.time, this.o.maxExtrapolation);
       const s = ahead / 1000;
       const bodies = [...newest.bodies.values()].map((b) =>
         this.wrapped({ ...b, x: b.x + b.vx * s, y: b.y + b.vy * s, angle: wrapAngle(b.angle + b.angularVelocity * s) }),
       );
-      return { bodies, serverTime: t, extrapolated: ahead };
+      return { bodies, serverTime: t, extrapolated: ahead, moment: newest.time + ahead };
     }
     let i = this.entries.length - 2;
     while (this.entries[i].time > t) --i;
@@ -123,7 +126,7 @@ export class Interpolator {
       const from = a.bodies.get(to.id);
       bodies.push(from ? this.lerp(from, to, f) : to);  // a body that just came into view: as it came
     }
-    return { bodies, serverTime: t, extrapolated: 0 };
+    return { bodies, serverTime: t, extrapolated: 0, moment: t };
   }
 
   private lerp(a: BodyState, b: BodyState, f: number): BodyState {

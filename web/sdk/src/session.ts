@@ -78,6 +78,15 @@ export class CoreSession {
   input(thrust: number, turn: number, buttons: number): Uint8Array {
     return this.out(this.core.module._arena_input(this.handle, thrust, turn, buttons));
   }
+  /** The moment of the world shown now (the interpolated view's tick, and `fraction`/256 of a
+   *  tick past it), which every input from now on carries (Input.view_tick, view_fraction) for
+   *  the server's lag compensation (docs/LAG_COMPENSATION.md). Never told (or tick 0): the
+   *  inputs carry the newest snapshot's tick. */
+  setViewMoment(tick: number, fraction: number): void {
+    const t = Number.isFinite(tick) ? Math.max(0, Math.min(0xffffffff, Math.floor(tick))) : 0;
+    const f = Number.isFinite(fraction) ? Math.max(0, Math.min(255, Math.floor(fraction))) : 0;
+    this.core.module._arena_set_view_moment(this.handle, t, f);
+  }
   /** clientTime: an integer (e.g. microseconds), echoed by the server's Pong. */
   ping(clientTime: number): Uint8Array {
     return this.out(this.core.module._arena_ping(this.handle, Math.max(0, Math.floor(clientTime))));

@@ -4,6 +4,8 @@
 // whose input the pacing leaves out sends nothing and counts in inputsLeftOut; events
 // come; stateAt draws the own body predicted and the others interpolated; close() says Bye.
 // A spectator (spectate: true) sends Hello.spectator and no Input, and draws with no own ship.
+// Once it draws, each Input carries the moment of the view drawn last (lag compensation): a
+// tick behind the newest snapshot's by about the interpolation delay, with a fraction.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -58,6 +60,9 @@ test('a game client over a fake socket sends what the native session sent and dr
       client.input(...call.input);
       ++ticks;
       now = welcomeAt + (ticks * 1000) / 60 + 0.5;
+      // The native session was never told a view moment: its bytes are the SDK's until the
+      // first draw, after which the SDK's Inputs carry the moment drawn (tested below).
+      const drawn = client.viewMoment;
       client.pump(now);
       const sent = socket.sent.splice(0);
       const own = sent.filter((f) => sdk.readMessage(f).payloadType() === sdk.Payload.Input);
@@ -69,8 +74,15 @@ test('a game client over a fake socket sends what the native session sent and dr
         continue;
       }
       assert.equal(own.length, 1, `one Input per tick (tick ${ticks})`);
-      assert.deepEqual(own[0], fromBase64(call.out), `Input ${ticks}: the native session's bytes`);
       const read = sdk.readMessage(own[0]).payload(new protocol.Input());
+      const native = sdk.readMessage(fromBase64(call.out)).payload(new protocol.Input());
+      if (drawn === null) assert.deepEqual(own[0], fromBase64(call.out), `Input ${ticks}: the native session's bytes`);
+      else {
+        assert.equal(read.viewTick(), drawn.tick, `Input ${ticks}: the moment drawn`);
+        assert.equal(read.viewFraction(), drawn.fraction);
+        assert.equal(read.snapshotAck(), native.snapshotAck(), `Input ${ticks}: the native session's acknowledgement`);
+        assert.equal(read.earlierLength(), native.earlierLength());
+      }
       assert.equal(read.sequence(), ticks - leftOut, 'the next sequence, across a tick left out');
       assert.equal(read.thrust(), Math.fround(call.input[0]));
       assert.equal(read.turn(), Math.fround(call.input[1]));
@@ -175,4 +187,78 @@ test('a spectator says so in its Hello, sends no Input, and draws the whole matc
   assert.ok(lastState.bodies.every((b) => !b.predicted && b.owner !== welcome.playerId));
   assert.ok(lastState.bodies.some((b) => b.kind === 1 && b.owner !== 0), "the player's ship is drawn");
   assert.ok(lastState.bodies.some((b) => b.kind === 2), 'rocks with their shapes');
+});
+
+test('each Input carries the moment of the view drawn last: behind the newest snapshot by the interpolation delay', async () => {
+  const core = await loadCore();
+  let socket;
+  let now = 1000;
+  const client = await sdk.connect('ws://test/ws', 'fixture', '', { core, socket: () => (socket = new FakeSocket()), now: () => now, autoPump: false });
+  const announced = [];
+  client.on('input', (i) => announced.push(i));
+  socket.onopen({});
+  socket.sent.splice(0);
+  let welcomeAt = 0, ticks = 0, snapshotRate = 0, drawn = 0;
+  const carried = [];  // { behind: newest snapshot's tick − view_tick (ticks, with the fraction), delay }
+  const fractions = new Set();
+  let undrawn = 0;
+  for (const call of recorded.calls) {
+    if (call.feed) {
+      const frame = fromBase64(call.feed);
+      if (call.type === sdk.Payload.Welcome) welcomeAt = now;
+      socket.onmessage({ data: frame.buffer.slice(frame.byteOffset, frame.byteOffset + frame.length) });
+      snapshotRate ||= client.session.snapshotRate;
+    } else if (call.input) {
+      client.input(...call.input);
+      ++ticks;
+      now = welcomeAt + (ticks * 1000) / 60 + 0.5;
+      client.pump(now);
+      for (const f of socket.sent.splice(0)) {
+        if (sdk.readMessage(f).payloadType() !== sdk.Payload.Input) continue;
+        const read = sdk.readMessage(f).payload(new protocol.Input());
+        const said = announced.at(-1);
+        assert.equal(said.sequence, read.sequence(), "the 'input' event names the Input sent");
+        assert.equal(said.tick, read.viewTick());
+        assert.equal(said.fraction, read.viewFraction());
+        if (drawn === 0) {
+          // Before any draw nothing is told: the core puts the newest snapshot's tick.
+          assert.equal(read.viewTick(), client.session.viewTick, 'before a draw: the newest snapshot');
+          assert.equal(read.viewFraction(), 0);
+          ++undrawn;
+          continue;
+        }
+        const behind = client.session.viewTick - (read.viewTick() + read.viewFraction() / 256);
+        carried.push({ behind, delay: (client.buffer.delay * 60) / 1000 });
+        fractions.add(read.viewFraction());
+      }
+      // The page draws a frame after each tick, from the second snapshot on, somewhere in the
+      // tick (a display's frames are not the server's ticks): the fraction drawn varies.
+      if (client.buffer.size >= 2) {
+        const state = client.stateAt(now + ((ticks * 7) % 16));
+        assert.deepEqual(state.view, client.viewMoment, 'stateAt says the moment it drew');
+        ++drawn;
+      }
+    }
+  }
+  assert.ok(undrawn > 0, 'Inputs before the first draw');
+  assert.ok(carried.length > 400, `${carried.length} Inputs carried a drawn moment`);
+  // The view is the interpolation delay behind the newest snapshot, less the time since that
+  // snapshot arrived (up to a snapshot interval) and the fastest trip's share of it: in the
+  // middle, and never beyond the delay nor ahead by more than the extrapolation (an interval).
+  const interval = 60 / snapshotRate;
+  const sorted = carried.map((c) => c.behind).sort((x, y) => x - y);
+  const median = sorted[Math.floor(sorted.length / 2)];
+  const delay = carried.at(-1).delay;
+  console.log(`view moments: ${median.toFixed(2)} ticks behind the newest snapshot (median; from ${sorted[0].toFixed(2)} to ` +
+              `${sorted.at(-1).toFixed(2)}), delay ${delay.toFixed(2)} ticks, a snapshot each ${interval} ticks, ${fractions.size} fractions seen`);
+  assert.ok(carried.every((c) => Math.abs(c.delay - delay) < 0.01), 'the delay held (no jitter in the recorded frames)');
+  assert.ok(median >= delay - interval - 1 && median <= delay + 0.5, `median ${median} ticks behind, the delay ${delay}`);
+  assert.ok(sorted[0] >= -interval && sorted.at(-1) <= delay + 1, `from ${sorted[0]} to ${sorted.at(-1)} ticks behind`);
+  assert.ok(fractions.size > 20, `the fraction varies: ${fractions.size} values`);
+});
+
+test('momentOf: a server time as a tick and 1/256 ticks', () => {
+  assert.deepEqual(sdk.momentOf(1000, 60), { tick: 60, fraction: 0 });
+  assert.deepEqual(sdk.momentOf(1000 + 1000 / 120, 60), { tick: 60, fraction: 128 });
+  assert.deepEqual(sdk.momentOf(-5, 60), { tick: 0, fraction: 0 });
 });
