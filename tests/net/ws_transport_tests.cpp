@@ -301,7 +301,8 @@ TEST_CASE("at shutdown a WebSocket client reads its Bye, and the server waits fo
     REQUIRE(b);
     CHECK(b.value.reason.find("SIGTERM") != std::string::npos);
     CHECK(c.closed_by_peer());
-    CHECK(s.process.stop(SIGTERM) == 0);
+    // It exits by itself: a second SIGTERM could find it past its handlers, killed by the signal.
+    CHECK(s.process.stop(0) == 0);
 }
 
 TEST_CASE("idle HTTP connections cannot keep /healthz or a WebSocket player out", "[net][ws][http]") {
