@@ -323,11 +323,9 @@ void client_core::claim_hits() {
             if (shape == nullptr || (shape->kind != rules::kind_ship && shape->kind != rules::kind_rock)) continue;
             if (shape->kind == rules::kind_ship && invulnerable(t.id(), tick)) continue;
             const world::vec2 centre{t.x(), t.y()};
-            if (!rules::sweep_hits(from, step, centre, bounding_radius(*shape) + bullet_radius, config)) continue;
-            const world::vec2 d = world::displacement(from, centre, config);
-            const world::real along = step.squaredNorm() > 0 ? d.dot(step) / step.squaredNorm() : 0;
-            if (along < nearest_along) {
-                nearest_along = along;
+            const auto along = rules::sweep_hits(from, step, centre, bounding_radius(*shape) + bullet_radius, config);
+            if (along && *along < nearest_along) {
+                nearest_along = *along;
                 nearest = t.id();
             }
         }

@@ -12,6 +12,16 @@ bool within(std::uint32_t a, std::uint32_t b, std::uint32_t window) {
 
 }  // namespace
 
+bool hit_registration::settle(std::vector<pending>& waiting, std::uint32_t target, std::uint32_t tick) {
+    const auto match = std::find_if(waiting.begin(), waiting.end(), [&](const pending& p) {
+        return p.target == target && within(p.tick, tick, window_);
+    });
+    if (match == waiting.end()) return false;
+    waiting.erase(match);
+    ++counts_.confirmed;
+    return true;
+}
+
 void hit_registration::claim(std::uint32_t sequence, std::uint32_t target, std::uint32_t tick) {
     if (has_claimed(sequence)) return;
     claimed_sequences_.push_back(sequence);
@@ -21,15 +31,7 @@ void hit_registration::claim(std::uint32_t sequence, std::uint32_t target, std::
     taken_.push_back(target);
     if (taken_.size() > kept) taken_.erase(taken_.begin());
     ++counts_.claimed;
-    const auto hit = std::find_if(hits_.begin(), hits_.end(), [&](const pending& h) {
-        return h.target == target && within(h.tick, tick, window_);
-    });
-    if (hit != hits_.end()) {
-        hits_.erase(hit);
-        ++counts_.confirmed;
-        return;
-    }
-    claims_.push_back({target, tick});
+    if (!settle(hits_, target, tick)) claims_.push_back({target, tick});
 }
 
 bool hit_registration::has_claimed(std::uint32_t sequence) const {
@@ -41,15 +43,7 @@ bool hit_registration::taken(std::uint32_t target) const {
 }
 
 void hit_registration::server_hit(std::uint32_t target, std::uint32_t tick) {
-    const auto claim = std::find_if(claims_.begin(), claims_.end(), [&](const pending& c) {
-        return c.target == target && within(c.tick, tick, window_);
-    });
-    if (claim != claims_.end()) {
-        claims_.erase(claim);
-        ++counts_.confirmed;
-        return;
-    }
-    hits_.push_back({target, tick});
+    if (!settle(claims_, target, tick)) hits_.push_back({target, tick});
 }
 
 void hit_registration::advance(std::uint32_t tick) {

@@ -52,6 +52,10 @@ private:
         std::uint32_t target = 0;
         std::uint32_t tick = 0;
     };
+    // A claim meets a waiting server hit, or a server hit a waiting claim, of `target` within the
+    // window: the oldest such is taken out of `waiting` and counted confirmed.
+    bool settle(std::vector<pending>& waiting, std::uint32_t target, std::uint32_t tick);
+
     std::uint32_t window_;
     std::vector<pending> claims_;                   // not confirmed yet, oldest first
     std::vector<pending> hits_;                     // server hits not matched yet, oldest first

@@ -289,12 +289,10 @@ void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
         const world::real reach = step.norm() * 0.5f + bullet->radius;
         history_.rewound_near(w.tick(), b.rewind, middle, reach, w.config(), [&](const hit_history::target& t) {
             if (own != nullptr && t.id == own->id) return;  // never its own ship
-            if (!sweep_hits(from, step, t.position, t.radius + bullet->radius, w.config())) return;
+            const auto along = sweep_hits(from, step, t.position, t.radius + bullet->radius, w.config());
             // Along the sweep: the first target in the bullet's way is the one it hits.
-            const world::vec2 to = world::displacement(from, t.position, w.config());
-            const world::real along = step.squaredNorm() > 0 ? to.dot(step) / step.squaredNorm() : 0;
-            if (along < nearest_along) {
-                nearest_along = along;
+            if (along && *along < nearest_along) {
+                nearest_along = *along;
                 nearest = t.id;
             }
         });

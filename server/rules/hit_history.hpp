@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "server/world/broadphase.hpp"
@@ -154,16 +155,17 @@ private:
     mutable std::vector<uint32_t> candidates_;
 };
 
-// Does a body of radius `r` moving from `from` by `step` pass within `reach` of `centre`?
-// (The short way round a wrapping world.)
-[[nodiscard]] inline bool sweep_hits(world::vec2 from, world::vec2 step, world::vec2 centre, world::real reach,
-                                     const world::world_config& config) {
+// Does a body moving from `from` by `step` pass within `reach` of `centre` (the short way round
+// a wrapping world)? When it does: how far along the step `centre` lies (its projection, as a
+// fraction of the step, not clamped), which orders the targets one sweep meets; none when not.
+[[nodiscard]] inline std::optional<world::real> sweep_hits(world::vec2 from, world::vec2 step, world::vec2 centre,
+                                                           world::real reach, const world::world_config& config) {
     const world::vec2 to_centre = world::displacement(from, centre, config);
     const world::real length2 = step.squaredNorm();
-    world::real s = length2 > 0 ? to_centre.dot(step) / length2 : 0;
-    s = std::clamp<world::real>(s, 0, 1);
-    const world::vec2 closest = step * s - to_centre;
-    return closest.squaredNorm() <= reach * reach;
+    const world::real along = length2 > 0 ? to_centre.dot(step) / length2 : 0;
+    const world::vec2 closest = step * std::clamp<world::real>(along, 0, 1) - to_centre;
+    if (closest.squaredNorm() > reach * reach) return std::nullopt;
+    return along;
 }
 
 }  // namespace arena::rules
