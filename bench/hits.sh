@@ -23,46 +23,16 @@ if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp
 # The link, the server and the bots run ahead of anything else on a shared machine (a compiler
 # at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
 priority=${HITS_NICE:--10}
-server_ns=arena-hits-server-$$
-bots_ns=arena-hits-bots-$$
-server_address=10.78.0.1
-bots_address=10.78.0.2
-link=""
-drop_namespaces() {
-  if [ -n "$link" ]; then kill -TERM "$link" 2>/dev/null || true; wait "$link" 2>/dev/null || true; link=""; fi
-  ip netns del "$server_ns" 2>/dev/null || true
-  ip netns del "$bots_ns" 2>/dev/null || true
-}
-cleanup() { drop_namespaces; [ -n "$keep" ] || rm -rf "$work"; }
-trap cleanup EXIT
-
-# connect DELAY_MS JITTER_MS LABEL: the two namespaces and their link (each way).
-connect() {
-  local latency=$1 spread=$2 label=$3 ns
-  drop_namespaces
-  for ns in "$server_ns" "$bots_ns"; do
-    ip netns add "$ns"
-    ip -n "$ns" link set lo up
-    ip -n "$ns" tuntap add dev arena0 mode tun
-  done
-  ip -n "$server_ns" addr add "$server_address/30" dev arena0
-  ip -n "$bots_ns" addr add "$bots_address/30" dev arena0
-  : > "$work/$label.link"
-  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" --jitter-ms "$spread" \
-    > "$work/$label.link" 2>&1 &
-  link=$!
-  for _ in $(seq 100); do grep -q "^link-delay ready" "$work/$label.link" && break; sleep 0.05; done
-  grep -q "^link-delay ready" "$work/$label.link" || { echo "arena-link-delay did not start" >&2; cat "$work/$label.link" >&2; return 1; }
-  ip -n "$server_ns" link set arena0 up
-  ip -n "$bots_ns" link set arena0 up
-}
+link_name=hits
+link_net=10.78.0
+. "$here/netns_link.sh"
 
 # run RTT_MS COMPENSATION_MS LABEL: one Asteroids server and its hunters, each in its namespace.
 run() {
   local rtt=$1 compensation=$2 label=$3
   local spread
   spread=$(awk -v r="$rtt" -v j="$jitter" 'BEGIN { print (r > 0 ? j / 2 : 0) }')
-  connect "$(awk -v r="$rtt" 'BEGIN { print r / 2 }')" "$spread" "$label"
+  link_connect "$label" "" --delay-ms "$(awk -v r="$rtt" 'BEGIN { print r / 2 }')" --jitter-ms "$spread"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --max-players "$bots" --duration $((seconds + 30)) --preset asteroids --lag-compensation-ms "$compensation" \

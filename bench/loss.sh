@@ -30,43 +30,17 @@ if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp
 # The link, the server and the bots run ahead of anything else on a shared machine (a compiler
 # at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
 priority=${LOSS_NICE:--10}
-server_ns=arena-loss-server-$$
-bots_ns=arena-loss-bots-$$
-server_address=10.77.0.1
-bots_address=10.77.0.2
-link=""
-drop_namespaces() {
-  if [ -n "$link" ]; then kill -TERM "$link" 2>/dev/null || true; wait "$link" 2>/dev/null || true; link=""; fi
-  ip netns del "$server_ns" 2>/dev/null || true
-  ip netns del "$bots_ns" 2>/dev/null || true
-}
-cleanup() { drop_namespaces; [ -n "$keep" ] || rm -rf "$work"; }
-trap cleanup EXIT
+link_name=loss
+link_net=10.77.0
+. "$here/netns_link.sh"
 
-# connect LOSS_PERMILLE LATENCY_MS LABEL: the two namespaces, their link and their loss.
-connect() {
-  local permille=$1 latency=$2 label=$3 ns
-  drop_namespaces
-  for ns in "$server_ns" "$bots_ns"; do
-    ip netns add "$ns"
-    ip -n "$ns" link set lo up
-    ip -n "$ns" tuntap add dev arena0 mode tun
-    ip netns exec "$ns" nft add table inet arena_loss
-    ip netns exec "$ns" nft "add chain inet arena_loss in { type filter hook input priority 0; }"
-    if [ "$permille" -gt 0 ]; then
-      ip netns exec "$ns" nft "add rule inet arena_loss in numgen random mod 1000 < $permille counter drop"
-    fi
-  done
-  ip -n "$server_ns" addr add "$server_address/30" dev arena0
-  ip -n "$bots_ns" addr add "$bots_address/30" dev arena0
-  : > "$work/$label.link"
-  ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-link-delay" --peer-netns "$bots_ns" --delay-ms "$latency" \
-    > "$work/$label.link" 2>&1 &
-  link=$!
-  for _ in $(seq 100); do grep -q "^link-delay ready" "$work/$label.link" && break; sleep 0.05; done
-  grep -q "^link-delay ready" "$work/$label.link" || { echo "arena-link-delay did not start" >&2; cat "$work/$label.link" >&2; return 1; }
-  ip -n "$server_ns" link set arena0 up
-  ip -n "$bots_ns" link set arena0 up
+# drop_share NAMESPACE: drops `permille` of the packets arriving in NAMESPACE (nftables).
+drop_share() {
+  ip netns exec "$1" nft add table inet arena_loss
+  ip netns exec "$1" nft "add chain inet arena_loss in { type filter hook input priority 0; }"
+  if [ "$permille" -gt 0 ]; then
+    ip netns exec "$1" nft "add rule inet arena_loss in numgen random mod 1000 < $permille counter drop"
+  fi
 }
 
 # run TRANSPORT LOSS_PERMILLE LATENCY_MS LABEL: one server and its bots, each in its namespace.
@@ -76,7 +50,7 @@ run() {
   if [ "$transport" = udp1 ]; then transport=udp; copies=(--udp-snapshot-copies 1); fi
   if [ "$transport" = udp2 ]; then transport=udp; copies=(--udp-snapshot-copies 2); fi
   if [ "$transport" = udpauto ]; then transport=udp; copies=(--udp-snapshot-copies auto); fi
-  connect "$permille" "$latency" "$label"
+  link_connect "$label" drop_share --delay-ms "$latency"
   : > "$work/$label.out"  # before the server starts: the background job opens it later
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --max-players "$bots" --duration $((seconds + 30)) --rules sandbox "${copies[@]}" --stats-json "$work/$label.stats.json" \
