@@ -123,6 +123,8 @@ void client_core::on_welcome() {
     // Hit registration: Asteroids' targets (ships and rocks), for a player that plays fair.
     judge_hits_ = session_.config()->rules == "asteroids" && !outcome_.misbehaving;
     hits_.set_window(session_.tick_rate());  // a second of ticks
+    shown_.set_interval(
+        std::max<std::uint32_t>(1, session_.tick_rate() / std::max<std::uint16_t>(1, session_.snapshot_rate())));
     outcome_.joined = true;
     shared_.on_joined(session_.welcome());
 }
@@ -159,6 +161,7 @@ void client_core::on_snapshot(std::size_t frame_bytes, time_ns now) {
     }
     if (first_view_tick_ == 0) first_view_tick_ = session_.view_tick();
     hits_.advance(session_.view_tick());
+    if (judge_hits_) shown_.on_snapshot(session_.view_tick(), session_.predicted_tick(), session_.view());
     const std::vector<protocol::BodyState>& bodies = session_.view();
     m.bodies_in_view.add(static_cast<double>(bodies.size()));
     m.view_bodies += bodies.size();
@@ -177,6 +180,22 @@ void client_core::on_snapshot(std::size_t frame_bytes, time_ns now) {
     behavior_->observe(bodies, session_.entity_id());
 }
 
+void client_core::lost_to_shot(const protocol::game_event& lost) {
+    // A rewound hit told its rewind just before (shot_rewound); any other was judged at once.
+    std::uint32_t rewind = 0;
+    if (const auto it = rewound_hits_.find(lost.body); it != rewound_hits_.end()) {
+        rewind = it->second;
+        rewound_hits_.erase(it);
+    }
+    if (!judge_hits_ || session_.tick_rate() == 0) return;
+    // The client shows its own ship at its predicted tick; it was hit as it was at the event's
+    // tick less the rewind: the difference is how long it saw itself alive, perhaps clear.
+    const std::int64_t hit_at = std::int64_t{lost.tick} * 256 - rewind;
+    const std::int64_t shown = std::int64_t{session_.predicted_tick()} * 256;
+    shared_.metrics().hit_after_seen_ms.add(static_cast<double>(shown - hit_at) * 1000.0 /
+                                            (256.0 * session_.tick_rate()));
+}
+
 void client_core::take_game() {
     const protocol::game_list& game = session_.game();
     if (game.empty()) return;
@@ -192,6 +211,11 @@ void client_core::take_game() {
         const std::uint32_t me = session_.player_id();
         if (e.kind == protocol::GameEventKind::rock_hit && e.player == me) hits_.server_hit(e.body, e.tick);
         if (e.kind == protocol::GameEventKind::ship_destroyed && e.other == me) hits_.server_hit(e.body, e.tick);
+        if ((e.kind == protocol::GameEventKind::rock_hit && e.player != me) ||
+            (e.kind == protocol::GameEventKind::ship_destroyed && e.other != me))
+            hits_.other_hit(e.body, e.tick);
+        if (e.kind == protocol::GameEventKind::shot_rewound && e.player == me) rewound_hits_[e.body] = e.value;
+        if (e.kind == protocol::GameEventKind::ship_destroyed && e.player == me && e.other != 0) lost_to_shot(e);
         if (e.kind == protocol::GameEventKind::respawn) respawned_[e.body] = e.tick;
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
@@ -284,9 +308,18 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
     if (phase_ != phase::playing || close_after_flush_) return;
     ++ticks_played_;
     if (params_.mode != misbehavior::none && ticks_played_ > misbehave_after_ticks && misbehave()) return;
-    if (session_.send_this_tick())
+    if (session_.send_this_tick()) {
+        // An Asteroids bot shows the others as an interpolating client does (shown_view.hpp):
+        // the input about to go out, the step into the next predicted tick, carries that moment.
+        const std::uint32_t next = session_.predicted_tick() + 1;
+        const std::uint64_t moment = judge_hits_ ? shown_.moment(next) : 0;
+        if (judge_hits_) session_.set_view_moment(moment);
         send_input(game_bot_ ? game_bot_->next(seen_by_game_bot()) : behavior_->next({session_.predicted()}));
-    else
+        // The server measures the rewind from the tick the input steps from, one before.
+        const std::uint64_t from = std::uint64_t{next - 1} * 256;
+        if (judge_hits_)
+            remember_rewind(session_.last_sequence(), static_cast<std::uint32_t>(from > moment ? from - moment : 0));
+    } else
         ++shared_.metrics().inputs_left_out;
     if (phase_ == phase::ended) return;
     if (judge_hits_) claim_hits();
@@ -303,30 +336,46 @@ bool client_core::invulnerable(std::uint32_t ship, std::uint32_t tick) const {
     return it != respawned_.end() && tick < it->second + span;
 }
 
+void client_core::remember_rewind(std::uint32_t sequence, std::uint32_t rewind) {
+    rewinds_.push_back({sequence, rewind});
+    // A bullet lives 1 s and the inputs go out one a tick: a few seconds' worth is plenty.
+    if (rewinds_.size() > 4u * session_.tick_rate()) rewinds_.pop_front();
+}
+
+std::uint32_t client_core::rewind_of(std::uint32_t sequence) const {
+    for (auto it = rewinds_.rbegin(); it != rewinds_.rend(); ++it)
+        if (it->first == sequence) return it->second;
+    return shown_.delay();
+}
+
 void client_core::claim_hits() {
     const world::world_config& config = *session_.config();
-    const std::uint32_t tick = session_.view_tick();
-    const std::vector<protocol::BodyState>& view = session_.view();
-    if (view.empty()) return;
     const world::real bullet_radius = rules::asteroids_params{}.bullet_radius;
+    // The bullets are where the prediction has them after the last input: at the predicted tick.
+    const std::uint64_t present = std::uint64_t{session_.predicted_tick()} * 256;
     for (const own_bullet& b : session_.own_bullets()) {
         if (hits_.has_claimed(b.sequence)) continue;
+        // Its shooter saw the others `rewind` behind when it fired, and is shown them so for
+        // the bullet's whole flight, as the server judges it (docs/LAG_COMPENSATION.md).
+        const std::uint32_t rewind = rewind_of(b.sequence);
+        const std::uint64_t moment = present > rewind ? present - rewind : 0;
+        const auto tick = static_cast<std::uint32_t>(moment / 256);
         // The bullet's sweep over the tick that brought it here, as the server judges it.
         const world::vec2 to{b.x, b.y};
         const world::vec2 step = world::vec2{b.vx, b.vy} * config.dt;
         const world::vec2 from = to - step;
         std::uint32_t nearest = 0;
         world::real nearest_along = 2;
-        for (const protocol::BodyState& t : view) {
-            if (t.id() == session_.entity_id() || hits_.taken(t.id())) continue;
-            const protocol::shape_desc* shape = session_.shape_of(t.id());
+        for (const shown_view::shown_body& t : shown_.at(moment, config)) {
+            if (t.id == session_.entity_id() || hits_.taken(t.id)) continue;
+            const protocol::shape_desc* shape = session_.shape_of(t.id);
             if (shape == nullptr || (shape->kind != rules::kind_ship && shape->kind != rules::kind_rock)) continue;
-            if (shape->kind == rules::kind_ship && invulnerable(t.id(), tick)) continue;
-            const world::vec2 centre{t.x(), t.y()};
-            const auto along = rules::sweep_hits(from, step, centre, bounding_radius(*shape) + bullet_radius, config);
+            if (shape->kind == rules::kind_ship && invulnerable(t.id, tick)) continue;
+            const auto along =
+                rules::sweep_hits(from, step, t.position, bounding_radius(*shape) + bullet_radius, config);
             if (along && *along < nearest_along) {
                 nearest_along = *along;
-                nearest = t.id();
+                nearest = t.id;
             }
         }
         if (nearest != 0) hits_.claim(b.sequence, nearest, tick);
@@ -433,6 +482,7 @@ void client_core::add_final_figures(fleet_metrics& m) const {
     m.hits.claimed += hits_.counts().claimed;
     m.hits.confirmed += hits_.counts().confirmed;
     m.hits.unclaimed_hits += hits_.counts().unclaimed_hits;
+    m.hits.contested += hits_.counts().contested;
     if (snapshots_ < 2) return;
     const double seconds = static_cast<double>(last_snapshot_at_ - first_snapshot_at_) / 1e9;
     if (seconds > 0) m.snapshots_per_s_per_bot.add(static_cast<double>(snapshots_ - 1) / seconds);

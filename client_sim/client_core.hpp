@@ -30,6 +30,7 @@
 #include "client_sim/misbehave.hpp"
 #include "client_sim/prediction.hpp"
 #include "client_sim/session.hpp"
+#include "client_sim/shown_view.hpp"
 #include "protocol/delta/receiver.hpp"
 #include "protocol/framing.hpp"
 #include "server/world/rng.hpp"
@@ -151,6 +152,12 @@ private:
     void on_pong(time_ns now);
     // Keeps the lines, names and events the newest snapshot carried.
     void take_game();
+    // This player's ship was destroyed by a bullet (the event `lost`): how long ago it showed
+    // itself where it was hit, into the fleet's hit_after_seen_ms.
+    void lost_to_shot(const protocol::game_event& lost);
+    // The rewind (1/256 ticks) the input `sequence` carried: how far behind it showed the others.
+    void remember_rewind(std::uint32_t sequence, std::uint32_t rewind);
+    [[nodiscard]] std::uint32_t rewind_of(std::uint32_t sequence) const;
     // What a game's own bot sees now.
     [[nodiscard]] game_view seen_by_game_bot() const;
     // The scoreboard this client holds, into the outcome (at the end).
@@ -198,6 +205,9 @@ private:
     hit_registration hits_;
     std::uint32_t first_view_tick_ = 0;
     std::map<std::uint32_t, std::uint32_t> respawned_;  // ship body id -> tick of its respawn
+    shown_view shown_;                                  // what it shows of the others (Asteroids bots: judge_hits_)
+    std::deque<std::pair<std::uint32_t, std::uint32_t>> rewinds_;  // (input sequence, its view's rewind), oldest first
+    std::map<std::uint32_t, std::uint32_t> rewound_hits_;  // own ship body id -> the rewind it was hit at (1/256 ticks)
 
     world::rng fault_rng_;  // garbage bytes, from the seed and index
     std::uint32_t ticks_played_ = 0;

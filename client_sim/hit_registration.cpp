@@ -46,11 +46,24 @@ void hit_registration::server_hit(std::uint32_t target, std::uint32_t tick) {
     if (!settle(claims_, target, tick)) hits_.push_back({target, tick});
 }
 
+void hit_registration::other_hit(std::uint32_t target, std::uint32_t tick) {
+    others_.push_back({target, tick});
+}
+
 void hit_registration::advance(std::uint32_t tick) {
     const auto closed = [&](const pending& p) {
         return p.tick + window_ < tick;
     };
-    std::erase_if(claims_, closed);  // claimed, never confirmed
+    // Claimed, never confirmed: contested when something else took the target meanwhile.
+    for (const pending& c : claims_) {
+        if (!closed(c)) continue;
+        const bool taken_by_other = std::any_of(others_.begin(), others_.end(), [&](const pending& o) {
+            return o.target == c.target && within(o.tick, c.tick, window_);
+        });
+        counts_.contested += taken_by_other ? 1 : 0;
+    }
+    std::erase_if(claims_, closed);
+    std::erase_if(others_, [&](const pending& o) { return o.tick + 2 * window_ < tick; });
     counts_.unclaimed_hits += static_cast<std::uint64_t>(std::erase_if(hits_, closed));
 }
 

@@ -20,6 +20,9 @@ struct hit_counts {
     std::uint64_t claimed = 0;         // hits the client saw (one per bullet)
     std::uint64_t confirmed = 0;       // of those, hit on the server within the window
     std::uint64_t unclaimed_hits = 0;  // server hits by this player the client never saw
+    // Claims never confirmed whose target something else took within the window (another
+    // player's bullet, or for a ship a rock): the server judges only targets still there.
+    std::uint64_t contested = 0;
 };
 
 class hit_registration {
@@ -39,6 +42,9 @@ public:
     [[nodiscard]] bool taken(std::uint32_t target) const;
     // The server's event: this player's bullet hit `target` in `tick`.
     void server_hit(std::uint32_t target, std::uint32_t tick);
+    // The server's event: `target` was hit or destroyed in `tick` by something other than this
+    // player's bullets.
+    void other_hit(std::uint32_t target, std::uint32_t tick);
     // The newest view is of `tick`: claims and hits whose window closed are settled.
     void advance(std::uint32_t tick);
     // The run is over at view `tick`: claims whose window is still open are left out (no
@@ -59,6 +65,7 @@ private:
     std::uint32_t window_;
     std::vector<pending> claims_;                   // not confirmed yet, oldest first
     std::vector<pending> hits_;                     // server hits not matched yet, oldest first
+    std::vector<pending> others_;                   // others' hits of the last two windows, oldest first
     std::vector<std::uint32_t> claimed_sequences_;  // bullets that claimed, while they may fly
     std::vector<std::uint32_t> taken_;              // targets claimed, the newest few
     hit_counts counts_;

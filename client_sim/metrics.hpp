@@ -100,6 +100,10 @@ struct fleet_metrics {
     sample_set bodies_in_view;           // per snapshot
     sample_set snapshot_bytes_each;      // per snapshot, its frame's bytes
     sample_set own_shot_error_m;         // spawn error of own shots matched with one, m (own_shots.hpp)
+    // A ship lost to a bullet (Asteroids): how long before the news arrived the client showed
+    // itself at the moment it was judged hit (that tick, less the shot's rewind), ms. See
+    // docs/LAG_COMPENSATION.md, "What a victim sees".
+    sample_set hit_after_seen_ms;
 
     // One value per second of the run, the whole fleet.
     sample_set snapshots_per_s;

@@ -217,6 +217,7 @@ final_report make_report(fleet_metrics& m, std::span<const bot_outcome> outcomes
         {"bytes_in_per_s", m.bytes_in_per_s.summarize()},
         {"bytes_out_per_s", m.bytes_out_per_s.summarize()},
         {"own_shot_error_m", m.own_shot_error_m.summarize()},
+        {"hit_after_seen_ms", m.hit_after_seen_ms.summarize()},
     };
     r.rejects = m.rejects;
     r.disconnects = m.disconnects;
@@ -275,11 +276,13 @@ std::string summary_table(const final_report& r) {
     const hit_counts& hits = r.hits;
     const std::uint64_t server_hits = hits.confirmed + hits.unclaimed_hits;
     out += format(
-        "hit registration: %llu claimed, %.1f %% confirmed, %llu unclaimed server hits (%.1f %%)\n",
+        "hit registration: %llu claimed, %.1f %% confirmed, %llu unclaimed server hits (%.1f %%), "
+        "%llu unconfirmed claims on targets something else took first\n",
         static_cast<unsigned long long>(hits.claimed),
         hits.claimed != 0 ? 100.0 * static_cast<double>(hits.confirmed) / static_cast<double>(hits.claimed) : 0.0,
         static_cast<unsigned long long>(hits.unclaimed_hits),
-        server_hits != 0 ? 100.0 * static_cast<double>(hits.unclaimed_hits) / static_cast<double>(server_hits) : 0.0);
+        server_hits != 0 ? 100.0 * static_cast<double>(hits.unclaimed_hits) / static_cast<double>(server_hits) : 0.0,
+        static_cast<unsigned long long>(hits.contested));
     out += format(
         "totals: bytes_in=%llu bytes_out=%llu snapshots=%llu inputs=%llu ticks_skipped=%llu inputs_left_out=%llu\n",
         static_cast<unsigned long long>(r.bytes_in), static_cast<unsigned long long>(r.bytes_out),
@@ -359,7 +362,10 @@ nlohmann::json to_json(const final_report& r) {
           {"unpredicted", r.own_shots.unpredicted},
           {"exact_share", r.own_shot_exact_share}}},
         {"hit_registration",
-         {{"claimed", r.hits.claimed}, {"confirmed", r.hits.confirmed}, {"unclaimed_hits", r.hits.unclaimed_hits}}},
+         {{"claimed", r.hits.claimed},
+          {"confirmed", r.hits.confirmed},
+          {"unclaimed_hits", r.hits.unclaimed_hits},
+          {"contested", r.hits.contested}}},
         {"rejects", tally_json(r.rejects)},
         {"disconnects", tally_json(r.disconnects)},
         {"misbehaving_drops", tally_json(r.misbehaving_drops)},

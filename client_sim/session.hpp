@@ -174,6 +174,12 @@ public:
     [[nodiscard]] std::uint32_t last_sequence() const { return predictor_ ? predictor_->last_sequence() : 0; }
     // The newest ack_sequence that made sense (the newest input the server consumed).
     [[nodiscard]] std::uint32_t last_ack() const { return last_ack_; }
+    // The tick the own body is predicted for, what the client shows of itself: the newest
+    // snapshot's, one more for each input sent after the one it acknowledged.
+    [[nodiscard]] std::uint32_t predicted_tick() const {
+        const std::uint32_t sent = last_sequence();
+        return last_tick_ + (sent > last_ack_ ? sent - last_ack_ : 0);
+    }
     [[nodiscard]] std::uint32_t delta_ack() const { return deltas_ ? deltas_->ack() : 0; }
     // Why the newest Snapshot's delta did not decode (its view was skipped and the baselines
     // dropped, so the server sends a full one next); empty when it did. A server bug.

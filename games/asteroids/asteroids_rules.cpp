@@ -240,6 +240,8 @@ void asteroids_rules::after_step(world::world& w) {
         } else if (player_of_ship(target) != nullptr) {
             const uint32_t victim = w.find(target)->owner;
             const uint32_t shooter = bullets_[bullet].owner;
+            // The victim hears how far back it was hit: it may have seen itself clear by then.
+            events_.push_back({event_kind::shot_rewound, 0, victim, shooter, target, bullets_[bullet].rewind});
             ++bullet_hits(bullet, target, params_.score_ship).kills;
             destroy_ship(w, victim, shooter, removals);
         }

@@ -26,6 +26,8 @@ protocol::GameEventKind wire_kind(rules::event_kind k) {
             return protocol::GameEventKind::respawn;
         case rules::event_kind::wave:
             return protocol::GameEventKind::wave;
+        case rules::event_kind::shot_rewound:
+            return protocol::GameEventKind::shot_rewound;
         case rules::event_kind::rock_hit:
             break;
     }

@@ -60,14 +60,14 @@ struct declared_event {
 
 // Something that happened in a step, for the players to hear (protocol GameEvent; the
 // match numbers them). The rules define what each field means per kind.
-enum class event_kind : uint8_t { rock_hit, ship_destroyed, respawn, wave };
+enum class event_kind : uint8_t { rock_hit, ship_destroyed, respawn, wave, shot_rewound };
 struct game_event {
     event_kind kind = event_kind::rock_hit;
     uint8_t size = 0;     // rock_hit: the rock's size
     uint32_t player = 0;  // whom it happened to, or who did it
     uint32_t other = 0;   // ship_destroyed: the shooter (0: a rock)
     uint32_t body = 0;    // the rock hit, the ship lost, the new ship
-    uint32_t value = 0;   // points scored; wave: its rocks
+    uint32_t value = 0;   // points scored; wave: its rocks; shot_rewound: the rewind, 1/256 ticks
     bool operator==(const game_event&) const = default;
 };
 

@@ -60,3 +60,18 @@ TEST_CASE("a hit that arrives before the claim is matched when the claim comes",
     CHECK(h.counts().confirmed == 1);
     CHECK(h.counts().unclaimed_hits == 0);
 }
+
+TEST_CASE("an unconfirmed claim on a target something else took first is counted contested", "[bots][hits]") {
+    hit_registration h(60);
+    h.claim(7, 100, 1000);
+    h.other_hit(100, 1005);  // another player's bullet got there first
+    h.claim(8, 200, 1000);
+    h.other_hit(200, 1200);  // long after: not what kept this claim from being confirmed
+    h.claim(9, 300, 1000);
+    h.other_hit(300, 1010);
+    h.server_hit(300, 1012);  // confirmed after all: not contested
+    h.advance(2000);
+    CHECK(h.counts().claimed == 3);
+    CHECK(h.counts().confirmed == 1);
+    CHECK(h.counts().contested == 1);
+}

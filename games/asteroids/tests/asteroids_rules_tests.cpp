@@ -402,7 +402,8 @@ namespace {
 
 // Lag compensation: ship 1 fires along +x at ship 2, which stood 10 m ahead in the line of fire
 // until the moment of the shot, then left it (30 m up). The bullet needs about 15 ticks to get
-// there. Returns whether ship 2 was destroyed, for a shot whose input rewinds `rewind`.
+// there. Returns whether ship 2 was destroyed, for a shot whose input rewinds `rewind`; a hit
+// tells the victim how far back it was judged (shot_rewound, just before its ship_destroyed).
 bool shot_at_leaving_target_hits(uint16_t rewind) {
     game g(one_rock(1));
     const uint32_t shooter = g.join(1);
@@ -432,7 +433,20 @@ bool shot_at_leaving_target_hits(uint16_t rewind) {
     fire.rewind = rewind;
     tick(away, {{world::body_id{shooter}, fire}});
     for (uint32_t k = 0; k < 40 && g.score(1).kills == 0; ++k) tick(away);
-    return g.score(1).kills == 1;
+    if (g.score(1).kills == 0) return false;
+    const auto& events = g.r.events();
+    const auto told = std::find_if(events.begin(), events.end(), [](const rules::game_event& e) {
+        return e.kind == rules::event_kind::shot_rewound;
+    });
+    REQUIRE(told != events.end());
+    CHECK(told->player == 2);
+    CHECK(told->other == 1);
+    CHECK(told->body == victim);
+    CHECK(told->value == rewind);
+    REQUIRE(told + 1 != events.end());
+    CHECK((told + 1)->kind == rules::event_kind::ship_destroyed);
+    CHECK((told + 1)->body == victim);
+    return true;
 }
 
 }  // namespace

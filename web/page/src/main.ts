@@ -89,6 +89,8 @@ interface PageState {
   lagShots: number;
   lagShapesDrawn: number;
   lagShapes: number;
+  /** The Welcome's tick rate (0 before it). */
+  tickRate: number;
 }
 
 declare global {
@@ -102,7 +104,7 @@ function newPageState(spectating: boolean): PageState {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
     bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [], gamePage: '', gamePageFrames: 0,
-    hitsConfirmed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0,
+    hitsConfirmed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0, tickRate: 0,
   };
 }
 
@@ -202,6 +204,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     statics = w.statics;
     staticIds = new Set(statics.map((s) => s.shape.id ?? 0));
     page.game = w.game;
+    page.tickRate = w.tickRate;
     hud.declare(w.game, w.tickRate);
     if (w.game) controls?.declare(w.game.inputs);
     painter.setTags(w.game?.bodyTags ?? null, ownerColour);
@@ -235,7 +238,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     if (page.records.length > 256) page.records.shift();
     hud.flashStatus(text);
   });
-  client.on('event', (e: { kind: number; body: number; player: number; other: number; size: number }) => {
+  client.on('event', (e: { kind: number; body: number; player: number; other: number; size: number; value: number }) => {
     ++page.events;
     const at = lastSeen.get(e.body);
     const born = performance.now();
@@ -246,11 +249,13 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
       hud.hitConfirmed(page.hitsConfirmed);
       if (at) hits.push({ x: at.x, y: at.y, born, life: HIT_MS, radius: at.r });
     }
-    // rock_hit 0, ship_destroyed 1, respawn 2, wave 3 (protocol GameEventKind).
+    // rock_hit 0, ship_destroyed 1, respawn 2, wave 3, shot_rewound 4 (protocol GameEventKind).
     if (e.kind === 1 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS * 2, radius: 3, colour: e.player === page.playerId ? '#ff5a4f' : '#ffa640' });
     else if (e.kind === 0 && at) flashes.push({ x: at.x, y: at.y, born, life: FLASH_MS, radius: at.r, colour: '#c9d3e6' });
     else if (e.kind === 3) hud.flashStatus(`wave ${e.size}`);
     else if (e.kind === 2 && e.player === page.playerId) hud.flashStatus('respawned');
+    // Lag compensation: the shooter saw this player that long ago, and the hit was judged there.
+    else if (e.kind === 4 && e.player === page.playerId && page.tickRate > 0) hud.flashStatus(`hit where you were ${Math.round((e.value * 1000) / (256 * page.tickRate))} ms ago`);
   });
   // ?debug=lag: an input with the fire button held going out shows its view's targets (the
   // view drawn at that moment: the one kept with that moment, else the nearest kept).

@@ -21,7 +21,7 @@ export interface PlayerLine {
 export interface GameEvent {
   sequence: number;
   tick: number;
-  /** rock_hit 0, ship_destroyed 1, respawn 2, wave 3 (protocol GameEventKind). */
+  /** rock_hit 0, ship_destroyed 1, respawn 2, wave 3, shot_rewound 4 (protocol GameEventKind). */
   kind: number;
   size: number;
   player: number;

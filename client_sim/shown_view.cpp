@@ -1,0 +1,65 @@
+#include "client_sim/shown_view.hpp"
+
+#include <algorithm>
+
+#include "server/world/broadphase.hpp"
+
+namespace arena::bots {
+
+void shown_view::on_snapshot(std::uint32_t tick, std::uint32_t predicted, std::span<const protocol::BodyState> bodies) {
+    if (!views_.empty() && tick <= views_.back().tick) return;  // overtaken: an older view adds nothing
+    views_.push_back({tick, std::vector<protocol::BodyState>(bodies.begin(), bodies.end())});
+    if (views_.size() > kept_views) views_.pop_front();
+    lags_.push_back(predicted > tick ? predicted - tick : 0);
+    if (lags_.size() > kept_lags) lags_.pop_front();
+    // Until the next snapshot the present runs on by up to an interval: the moment shown then
+    // is still no newer than this one.
+    delay_ = (*std::max_element(lags_.begin(), lags_.end()) + interval_) * 256;
+}
+
+std::uint64_t shown_view::moment(std::uint32_t predicted) const {
+    if (views_.empty()) return 0;
+    const std::uint64_t present = std::uint64_t{predicted} * 256;
+    return present > delay_ ? present - delay_ : 0;
+}
+
+std::vector<shown_view::shown_body> shown_view::at(std::uint64_t moment, const world::world_config& config) const {
+    std::vector<shown_body> out;
+    if (views_.empty()) return out;
+    // The first kept view at or after the moment, and the one before it.
+    auto after = std::find_if(views_.begin(), views_.end(),
+                              [&](const kept& v) { return std::uint64_t{v.tick} * 256 >= moment; });
+    const kept& newer = after == views_.end() ? views_.back() : *after;
+    const kept* older = after != views_.end() && after != views_.begin() ? &*(after - 1) : nullptr;
+    // A body where it is at `moment`, carried on (or back) by its velocity from view `v`.
+    const auto carried = [&](const protocol::BodyState& b, const kept& v) {
+        const auto seconds = static_cast<world::real>(
+            (static_cast<double>(moment) - static_cast<double>(v.tick) * 256.0) / 256.0 * config.dt);
+        return shown_body{b.id(), world::vec2{b.x(), b.y()} + world::vec2{b.vx(), b.vy()} * seconds};
+    };
+    if (older == nullptr) {
+        for (const protocol::BodyState& b : newer.bodies) out.push_back(carried(b, newer));
+        return out;
+    }
+    // Between two views: a body in both moves from one place to the other; one only in the
+    // newer (a rock's fragment, a respawned ship) came between the two and is shown from the
+    // newer's moment on; one only in the older (gone by the newer) is not shown either, as the
+    // newer view has it.
+    const double from_moment = static_cast<double>(older->tick) * 256.0;
+    const double to_moment = static_cast<double>(newer.tick) * 256.0;
+    const auto t = static_cast<world::real>((static_cast<double>(moment) - from_moment) / (to_moment - from_moment));
+    std::size_t i = 0;
+    for (const protocol::BodyState& b : newer.bodies) {
+        while (i < older->bodies.size() && older->bodies[i].id() < b.id()) ++i;
+        const world::vec2 to{b.x(), b.y()};
+        if (i < older->bodies.size() && older->bodies[i].id() == b.id()) {
+            const world::vec2 from{older->bodies[i].x(), older->bodies[i].y()};
+            out.push_back({b.id(), from + world::displacement(from, to, config) * t});
+        } else if (static_cast<double>(moment) >= to_moment) {
+            out.push_back({b.id(), to});
+        }
+    }
+    return out;
+}
+
+}  // namespace arena::bots
