@@ -214,6 +214,10 @@ void client_core::take_game() {
         if ((e.kind == protocol::GameEventKind::rock_hit && e.player != me) ||
             (e.kind == protocol::GameEventKind::ship_destroyed && e.other != me))
             hits_.other_hit(e.body, e.tick);
+        if (judge_hits_ &&
+            (e.kind == protocol::GameEventKind::rock_hit || e.kind == protocol::GameEventKind::ship_destroyed))
+            shown_.went(e.body, e.tick);
+        if (judge_hits_ && e.kind == protocol::GameEventKind::respawn) shown_.came(e.body, e.tick);
         if (e.kind == protocol::GameEventKind::shot_rewound && e.player == me) rewound_hits_[e.body] = e.value;
         if (e.kind == protocol::GameEventKind::ship_destroyed && e.player == me && e.other != 0) lost_to_shot(e);
         if (e.kind == protocol::GameEventKind::respawn) respawned_[e.body] = e.tick;

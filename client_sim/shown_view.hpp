@@ -3,12 +3,15 @@
 // behind its own predicted present, between the two snapshots around that moment. The delay is
 // the largest lag of a snapshot behind the present over the last second, plus one snapshot
 // interval, so that the moment shown almost always lies between two snapshots already in hand
-// and moves smoothly, a tick per tick. Its inputs carry that moment (Input.view_tick and
+// and moves smoothly, a tick per tick. A body that came or went between two snapshots is shown
+// while the server's events say it was there (a rock hit goes at the event's tick, and its
+// fragments come then). Its inputs carry that moment (Input.view_tick and
 // view_fraction: lag compensation), and its hits are judged against it
 // (hit_registration.hpp): a bullet fired with the view `rewind` behind is seen, for its whole
 // flight, against the others that far behind, as the server judges it.
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <span>
 #include <vector>
@@ -37,9 +40,17 @@ public:
         std::uint32_t id = 0;
         world::vec2 position{0, 0};
     };
-    // Every body shown at `moment`, by increasing id: between its places in the two kept
-    // snapshots around the moment; a body of only one of them is not shown (it came, or went,
-    // between the two); past the newest snapshot (or before the oldest), that one's bodies
+    // The server's word on when a body went (a rock hit, a ship destroyed: the event's tick, the
+    // first whose state lacks it) or came (a respawned ship's), for the views between which it
+    // did.
+    void went(std::uint32_t body, std::uint32_t tick);
+    void came(std::uint32_t body, std::uint32_t tick);
+
+    // Every body shown at `moment`: between its places in the two kept snapshots around the
+    // moment; a body of only one of them while it was there (went() and came() say when; a
+    // newcomer without a word came with the last body that went between the two, else with
+    // the newer; one that went without a word is not shown), carried by its velocity from the
+    // snapshot that has it; past the newest snapshot (or before the oldest), that one's bodies
     // carried on (or back) by their velocity.
     [[nodiscard]] std::vector<shown_body> at(std::uint64_t moment, const world::world_config& config) const;
 
@@ -54,6 +65,8 @@ private:
     std::uint32_t interval_;
     std::deque<kept> views_;  // oldest first
     std::deque<std::uint32_t> lags_;
+    std::map<std::uint32_t, std::uint32_t> went_;  // body id → the tick it went
+    std::map<std::uint32_t, std::uint32_t> came_;  // body id → the tick it came
     std::uint32_t delay_ = 0;
 };
 

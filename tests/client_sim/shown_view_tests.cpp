@@ -68,3 +68,26 @@ TEST_CASE("between two snapshots across a wrapping world's edge, the short way r
     // 1 m short of the edge, then 1 m past it: halfway is at the edge, not in the middle.
     CHECK((halfway.x() == Approx(edge) || halfway.x() == Approx(0.0f).margin(1e-3)));
 }
+
+TEST_CASE("a body that went or came between two snapshots is shown while the server says it was there",
+          "[bots][view]") {
+    world::world_config config = world::asteroids_preset();
+    shown_view v(3);
+    v.on_snapshot(100, 102, std::vector<protocol::BodyState>{at(7, 10, 10, 60, 0)});
+    v.on_snapshot(103, 105, std::vector<protocol::BodyState>{at(8, 30, 30, 0, 60), at(9, 40, 40)});
+    v.went(7, 102);  // rock 7 was hit: the state of tick 102 first lacks it; 8 came as it went
+    const auto has = [](const std::vector<shown_view::shown_body>& bodies, uint32_t id) {
+        return std::any_of(bodies.begin(), bodies.end(), [&](const shown_view::shown_body& b) { return b.id == id; });
+    };
+    const auto before = v.at(101 * 256, config);
+    REQUIRE(has(before, 7));
+    CHECK(position_of(before, 7).x() == Approx(11.0f));  // carried on from tick 100
+    CHECK_FALSE(has(before, 8));
+    const auto after = v.at(102 * 256, config);
+    CHECK_FALSE(has(after, 7));
+    REQUIRE(has(after, 8));
+    CHECK(position_of(after, 8).y() == Approx(29.0f));  // carried back from tick 103
+    // Body 9 also came, but the respawn event says when: tick 103.
+    v.came(9, 103);
+    CHECK_FALSE(has(v.at(102 * 256, config), 9));
+}
