@@ -30,7 +30,7 @@ PACKAGES := build-essential cmake ninja-build pkg-config libboost1.81-dev libfla
 # so these are installed only when there is no `npm` command.
 NPM_PACKAGES := nodejs npm
 
-.PHONY: all deps build timed-build run test test-fast bench bench-deps bench-e2e bench-loss bench-hits clean fuzz lint-docker format format-check
+.PHONY: all deps build timed-build run test test-fast bench bench-deps bench-e2e bench-loss bench-hits bench-page-hits clean fuzz lint-docker format format-check
 
 all: build
 
@@ -142,6 +142,10 @@ bench-loss: build bench-deps
 # Hit registration over UDP with 0 to 200 ms of round trip, lag compensation on and off (root).
 bench-hits: build bench-deps
 	./bench/hits.sh $(BUILD)/bin
+
+# A person's view of it: the page in Chromium plays over 100 ms of round trip (root).
+bench-page-hits: build bench-deps
+	./bench/page_hits.sh $(BUILD)/bin $(BUILD)/web-page/node_modules
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) build-clang-* build-gcc-* build-aarch64-*

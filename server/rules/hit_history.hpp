@@ -156,8 +156,9 @@ private:
 };
 
 // Does a body moving from `from` by `step` pass within `reach` of `centre` (the short way round
-// a wrapping world)? When it does: how far along the step `centre` lies (its projection, as a
-// fraction of the step, not clamped), which orders the targets one sweep meets; none when not.
+// a wrapping world)? When it does: the fraction of the step at which it first comes within
+// `reach` (0 when it starts there), which orders the targets one sweep meets: the one it reaches
+// first is the one it hits, however far beyond the step a large target's centre lies.
 [[nodiscard]] inline std::optional<world::real> sweep_hits(world::vec2 from, world::vec2 step, world::vec2 centre,
                                                            world::real reach, const world::world_config& config) {
     const world::vec2 to_centre = world::displacement(from, centre, config);
@@ -165,7 +166,11 @@ private:
     const world::real along = length2 > 0 ? to_centre.dot(step) / length2 : 0;
     const world::vec2 closest = step * std::clamp<world::real>(along, 0, 1) - to_centre;
     if (closest.squaredNorm() > reach * reach) return std::nullopt;
-    return along;
+    const world::real outside2 = to_centre.squaredNorm() - reach * reach;
+    if (outside2 <= 0 || length2 == 0) return world::real{0};
+    // |from + t·step − centre| = reach: t = along − √(along² − outside²/|step|²), the smaller root.
+    const world::real root2 = along * along - outside2 / length2;
+    return std::clamp<world::real>(along - std::sqrt(std::max<world::real>(root2, 0)), 0, 1);
 }
 
 }  // namespace arena::rules

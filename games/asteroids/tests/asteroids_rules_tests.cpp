@@ -400,6 +400,16 @@ TEST_CASE("the rules tell what happened (a rock hit, a ship lost, its respawn, a
 
 namespace {
 
+// Puts body `id` at `at`, still and facing +x.
+void hold(world::world& w, uint32_t id, vec2 at) {
+    world::body* b = w.find(id);
+    REQUIRE(b);
+    b->position = at;
+    b->velocity = {0, 0};
+    b->angular_velocity = 0;
+    b->angle = 0;
+}
+
 // Lag compensation: ship 1 fires along +x at ship 2, which stood 10 m ahead in the line of fire
 // until the moment of the shot, then left it (30 m up). The bullet needs about 15 ticks to get
 // there. Returns whether ship 2 was destroyed, for a shot whose input rewinds `rewind`; a hit
@@ -412,18 +422,10 @@ bool shot_at_leaving_target_hits(uint16_t rewind) {
     for (const world::body& b : g.w.bodies())
         if (g.r.rock_size(b.id) != 0) rock = b.id;
     const vec2 gun{20, 50}, ahead{30, 50}, away{30, 80};
-    const auto hold = [&](uint32_t id, vec2 at) {
-        world::body* b = g.w.find(id);
-        REQUIRE(b);
-        b->position = at;
-        b->velocity = {0, 0};
-        b->angular_velocity = 0;
-        b->angle = 0;
-    };
     const auto tick = [&](vec2 victim_at, const world::tick_inputs& inputs = {}) {
-        hold(shooter, gun);
-        if (g.r.body_of(2) == victim) hold(victim, victim_at);
-        if (rock != 0 && g.w.find(rock)) hold(rock, {80, 10});
+        hold(g.w, shooter, gun);
+        if (g.r.body_of(2) == victim) hold(g.w, victim, victim_at);
+        if (rock != 0 && g.w.find(rock)) hold(g.w, rock, {80, 10});
         g.step(inputs);
     };
     // Past both ships' invulnerability after joining, and half a second in the line of fire
@@ -458,6 +460,69 @@ TEST_CASE("a rewound shot hits the target where its shooter saw it, and only the
     CHECK_FALSE(shot_at_leaving_target_hits(5 * 256));
     // Seen 20 ticks late (333 ms at 60 Hz), the target was still in the line: a hit.
     CHECK(shot_at_leaving_target_hits(20 * 256));
+}
+
+namespace {
+
+// Ticks from a shot, fired from 40 m away at a still rock of radius 5, to the rock's hit, for a
+// shot whose input rewinds `rewind`.
+uint32_t ticks_to_hit_a_large_rock(uint16_t rewind) {
+    game g(one_rock(1));
+    const uint32_t shooter = g.join(1);
+    uint32_t rock = 0;
+    for (const world::body& b : g.w.bodies())
+        if (g.r.rock_size(b.id) != 0) rock = b.id;
+    REQUIRE(rock != 0);
+    const auto tick = [&](const world::tick_inputs& inputs = {}) {
+        hold(g.w, shooter, {20, 50});
+        if (g.r.rock_size(rock) != 0) hold(g.w, rock, {60, 50});
+        g.step(inputs);
+    };
+    // Past the cooldown, and long enough still for the history to hold the rock there.
+    for (uint32_t k = 0; k < 70; ++k) tick();
+    world::player_input fire{0, 0, rules::button_fire};
+    fire.rewind = rewind;
+    tick({{world::body_id{shooter}, fire}});
+    for (uint32_t k = 1; k <= 60; ++k) {
+        if (g.r.rock_size(rock) == 0) return k;
+        tick();
+    }
+    return 0;
+}
+
+}  // namespace
+
+// A rewound shot is judged against the rock's bounding circle where the bullet's sweep first
+// reaches it, not where the rock's centre lies: a rock much larger than one tick of the bullet's
+// flight is hit no later than the present's contact would hit it.
+TEST_CASE("a rewound shot hits a large rock where its sweep first reaches it", "[rules][asteroids][lag]") {
+    const uint32_t present = ticks_to_hit_a_large_rock(0);
+    REQUIRE(present != 0);
+    const uint32_t rewound = ticks_to_hit_a_large_rock(5 * 256);
+    REQUIRE(rewound != 0);
+    CHECK(rewound <= present);
+    // The bounding circle reaches beyond the polygon (its corners lie 0.6 to 1 radius out): at
+    // most 2 m, three steps of the bullet.
+    CHECK(rewound + 4 >= present);
+}
+
+TEST_CASE("a sweep tells where along its step it first comes within reach", "[rules][lag]") {
+    const world::world_config c = world::asteroids_preset();
+    // A 5 m reach whose centre lies 5.5 steps ahead: reached half way through the step.
+    const auto half = rules::sweep_hits(vec2{10, 10}, vec2{1, 0}, vec2{15.5f, 10}, 5, c);
+    REQUIRE(half);
+    CHECK(*half == Approx(0.5f));
+    // Six steps ahead: out of reach for the whole step.
+    CHECK_FALSE(rules::sweep_hits(vec2{10, 10}, vec2{1, 0}, vec2{16.5f, 10}, 5, c));
+    // Starting within reach: at once. Passing beside it within reach: where the circle begins.
+    CHECK(rules::sweep_hits(vec2{10, 10}, vec2{1, 0}, vec2{12, 10}, 5, c) == 0);
+    const auto beside = rules::sweep_hits(vec2{10, 10}, vec2{4, 0}, vec2{16, 13}, 5, c);
+    REQUIRE(beside);
+    CHECK(*beside == Approx(0.5f));  // (12, 10) is 5 m from (16, 13)
+    // The short way round a wrapping world: a target just over the edge ahead.
+    const auto wrapped = rules::sweep_hits(vec2{c.size.x() - 1, 10}, vec2{1, 0}, vec2{4.5f, 10}, 5, c);
+    REQUIRE(wrapped);
+    CHECK(*wrapped == Approx(0.5f));
 }
 
 TEST_CASE("the hit history keeps a bounded past and interpolates between ticks", "[rules][lag]") {

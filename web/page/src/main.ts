@@ -8,12 +8,14 @@
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 // A game with a page module of its own (games/NAME/page.ts, game_page.ts) draws with it too.
 // A hit of this player's that the server confirms (a GameEvent naming it as the shooter) shows
-// as a magenta X at the target and "hit" under the centre; ?debug=lag draws, for the player's
+// as a magenta X at the target and "hit" under the centre, after the white flash the page shows
+// the moment its own bullet touched the target as drawn (src/claims.ts); ?debug=lag draws, for the player's
 // last shots, the targets as the view that shot's input carried showed them: the world the
 // server rewinds to judge the shot (docs/LAG_COMPENSATION.md).
 import { gamePages } from '@arena/game-pages';
 import { connect } from './arena-sdk.mjs';
 import type { ConnectOptions } from './arena-sdk.mjs';
+import { ShotClaims, boundingRadius } from './claims.js';
 import { BUTTON_FIRE, Controls } from './controls.js';
 import { Body, Flash, HitMarker, KIND_BULLET, KIND_SHIP, LagShot, Painter, StaticBody, VIEW_METRES, World } from './draw.js';
 import { Manifest, eventText, resultText, teamColour, teamField } from './game.js';
@@ -83,6 +85,9 @@ interface PageState {
   /** Hits of this player's the server confirmed (GameEvents: a rock_hit by it, a ship_destroyed
    *  with it as `other`), each drawn as a hit marker. */
   hitsConfirmed: number;
+  /** Hits this player saw: its bullet touching a target as the page drew them (src/claims.ts),
+   *  each flashed white at once, before any verdict. */
+  hitsClaimed: number;
   /** ?debug=lag: whether it is on, the shots it showed, and the outlined targets it drew (summed
    *  over the frames, and in the last frame). */
   debugLag: boolean;
@@ -104,7 +109,7 @@ function newPageState(spectating: boolean): PageState {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
     bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [], gamePage: '', gamePageFrames: 0,
-    hitsConfirmed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0, tickRate: 0,
+    hitsConfirmed: 0, hitsClaimed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0, tickRate: 0,
   };
 }
 
@@ -164,6 +169,8 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
   // Where each body was last drawn: a game event names a body, not a place.
   const lastSeen = new Map<number, { x: number; y: number; r: number }>();
   let hits: HitMarker[] = [];
+  const claims = new ShotClaims();
+  let bulletRadius = 0.1; // m, Asteroids' until a drawn bullet tells the game's
   // ?debug=lag: the last LAG_VIEWS views drawn, each with its moment (tick × 256 + fraction, as
   // the SDK tells the inputs) and the other bodies in it; the shots shown.
   const views: { moment: number; targets: { x: number; y: number; radius: number }[] }[] = [];
@@ -297,10 +304,19 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     if (mine) centre = { x: mine.x, y: mine.y };
     else if (spectating) centre = { x: world.width / 2, y: world.height / 2 };
     const span = spectating && world.width > 0 ? Math.max(world.width, world.height) : VIEW_METRES;
-    for (const b of bodies) lastSeen.set(b.id, { x: b.x, y: b.y, r: b.shape?.radius ?? 1 });
+    for (const b of bodies) lastSeen.set(b.id, { x: b.x, y: b.y, r: boundingRadius(b) });
     if (lastSeen.size > 4 * bodies.length + 64) {
       const live = new Set(bodies.map((b) => b.id));
       for (const id of lastSeen.keys()) if (!live.has(id)) lastSeen.delete(id);
+    }
+    if (!spectating) {
+      // The own bullets against the others as drawn: what this player sees hit (src/claims.ts).
+      const bullet = bulletKind();
+      const drawnBullet = bodies.find((b) => b.kind === bullet && b.shape);
+      if (drawnBullet) bulletRadius = boundingRadius(drawnBullet);
+      const targets = bodies.filter((b) => !b.predicted && b.kind !== bullet && b.owner !== page.playerId && b.id !== 0);
+      flashes.push(...claims.frame(world, client.session.ownBullets(), bulletRadius, targets, now));
+      page.hitsClaimed = claims.claimed;
     }
     // The own shots the server has not shown yet: each bullet appears as it is fired.
     for (const s of state.shots) bodies.push({ id: 0, owner: page.playerId, x: s.x, y: s.y, angle: 0, kind: KIND_BULLET, predicted: true });
