@@ -182,6 +182,7 @@ void asteroids_rules::split_rock(world::world& w, uint32_t id, std::vector<uint3
 
 void asteroids_rules::after_step(world::world& w) {
     events_.clear();
+    judged_.clear();
     std::vector<uint32_t> removals;
     std::vector<uint32_t> consumed;  // bodies an earlier event of this step used up
     const auto used = [&consumed](uint32_t id) {
@@ -229,15 +230,29 @@ void asteroids_rules::after_step(world::world& w) {
         }
     }
     record_targets(w);
-    judge_rewound(w, [&](uint32_t bullet, uint32_t target) {
+    judge_rewound(w, [&](uint32_t bullet, const hit_history::target& rewound) {
+        const uint32_t target = rewound.id;
         if (used(bullet) || used(target)) return;
+        // Where the shot was judged, for its shooter's ?debug=lag (in mm: the event's values are
+        // integers; lround of a float is exact on every target). Told only for a hit: a target
+        // of the past may be gone from the present.
+        const auto told = [&] {
+            const auto mm = [](world::real v) {
+                return static_cast<int32_t>(std::lround(v * 1000.0f));
+            };
+            judged_.push_back({judged_in_past,
+                               {static_cast<int32_t>(bullets_[bullet].owner), mm(rewound.position.x()),
+                                mm(rewound.position.y()), mm(rewound.radius)}});
+        };
         if (const auto rock = rocks_.find(target); rock != rocks_.end()) {
+            told();
             const uint32_t size = rock->second;
             events_.push_back(
                 {event_kind::rock_hit, static_cast<uint8_t>(size), bullets_[bullet].owner, 0, target, points(size)});
             bullet_hits(bullet, target, points(size));
             split_rock(w, target, removals);
         } else if (player_of_ship(target) != nullptr) {
+            told();
             const uint32_t victim = w.find(target)->owner;
             const uint32_t shooter = bullets_[bullet].owner;
             // The victim hears how far back it was hit: it may have seen itself clear by then.
@@ -277,7 +292,7 @@ void asteroids_rules::record_targets(const world::world& w) {
 
 template <class Hit>
 void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
-    std::vector<std::pair<uint32_t, uint32_t>> hits;  // (bullet, target), judged before any is applied
+    std::vector<std::pair<uint32_t, hit_history::target>> hits;  // judged before any is applied
     for (auto& [id, b] : bullets_) {
         if (b.rewind == 0) continue;
         const world::body* bullet = w.find(id);
@@ -285,7 +300,7 @@ void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
         const world::vec2 from = b.last_position;  // a copy: a lambda cannot capture a structured binding
         const world::vec2 step = world::displacement(from, bullet->position, w.config());
         const world::body* own = w.find(players_[b.owner].ship);
-        uint32_t nearest = 0;
+        hit_history::target nearest;
         world::real nearest_along = 2;
         const world::vec2 middle = from + step * 0.5f;
         const world::real reach = step.norm() * 0.5f + bullet->radius;
@@ -295,11 +310,11 @@ void asteroids_rules::judge_rewound(const world::world& w, Hit&& hit) {
             // Along the sweep: the first target in the bullet's way is the one it hits.
             if (along && *along < nearest_along) {
                 nearest_along = *along;
-                nearest = t.id;
+                nearest = t;
             }
         });
         b.last_position = bullet->position;
-        if (nearest != 0) hits.emplace_back(id, nearest);
+        if (nearest.id != 0) hits.emplace_back(id, nearest);
     }
     for (const auto& [bullet, target] : hits) hit(bullet, target);
 }
@@ -468,6 +483,8 @@ protocol::game_manifest asteroids_rules::manifest() const {
     // them again would send every change twice.
     m.body_tags = {{kind_ship, "ship", "ship", ""}, {kind_rock, "rock", "", ""}, {kind_bullet, "bullet", "disc", ""}};
     m.inputs = {{"fire", 1, "Space"}, {"boost", 0, "ShiftLeft"}};
+    // Told without words (no message): a page draws it under ?debug=lag.
+    m.events = {{"judged_in_past", {"player", "x_mm", "y_mm", "radius_mm"}, ""}};
     return m;
 }
 

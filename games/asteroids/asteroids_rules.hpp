@@ -29,6 +29,9 @@ inline constexpr uint8_t kind_ship = 1;
 inline constexpr uint8_t kind_rock = 2;
 inline constexpr uint8_t kind_bullet = 3;
 
+// The kind (its index in the manifest's events) of the one event Asteroids declares.
+inline constexpr uint8_t judged_in_past = 0;
+
 class asteroids_rules : public rules {
 public:
     // Every moving body of `w` without an owner is a large rock; contact events go on.
@@ -48,6 +51,9 @@ public:
     void hash(world::fnv1a& h) const override;
     std::vector<score_line> scoreboard() const override;
     std::span<const game_event> events() const override { return events_; }
+    // The one event it declares (manifest()): `judged_in_past`, a hit judged against the past,
+    // with the target's bounding circle where the history had it (what ?debug=lag draws).
+    std::span<const declared_event> declared_events() const override { return judged_; }
     // The highest score; a tie at the top is nobody's win.
     uint32_t winner() const override;
     // Its bodies and its keys; its scoreboard and events are the protocol's own PlayerLine and
@@ -94,7 +100,7 @@ private:
     // The targets a bullet can hit now (vulnerable ships and rocks), into the history.
     void record_targets(const world::world& w);
     // Each rewound bullet's sweep of the last step against the targets as its shooter saw them:
-    // the target nearest along the sweep is hit (`hit(bullet, target)`).
+    // the target the sweep reaches first is hit (`hit(bullet, target)`, the target rewound).
     template <class Hit>
     void judge_rewound(const world::world& w, Hit&& hit);
     // `shooter`: the player whose bullet did it, 0 for a rock.
@@ -114,6 +120,7 @@ private:
     uint32_t wave_size_ = 0;              // large rocks in the last wave
     hit_history history_;                 // the targets' recent past (derived: not hashed)
     std::vector<game_event> events_;      // the last after_step's
+    std::vector<declared_event> judged_;  // the last after_step's hits judged in the past
 };
 
 }  // namespace arena::rules

@@ -2,6 +2,7 @@
 // match against a golden scoreboard and hash is in asteroids_match_tests.cpp.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "games/asteroids/asteroids_rules.hpp"
 #include "games/registry.hpp"
@@ -431,11 +432,20 @@ bool shot_at_leaving_target_hits(uint16_t rewind) {
     // Past both ships' invulnerability after joining, and half a second in the line of fire
     // (an invulnerable ship is no target, in the past either).
     for (uint32_t k = 0; k <= g.r.params().invulnerable_ticks + 30; ++k) tick(ahead);
+    const real victim_radius = g.w.find(victim)->radius;
     world::player_input fire{0, 0, rules::button_fire};
     fire.rewind = rewind;
     tick(away, {{world::body_id{shooter}, fire}});
     for (uint32_t k = 0; k < 40 && g.score(1).kills == 0; ++k) tick(away);
     if (g.score(1).kills == 0) return false;
+    // The shooter hears where the target was judged: where it stood in the past, in mm.
+    const auto judged = g.r.declared_events();
+    REQUIRE(judged.size() == 1);
+    CHECK(judged[0].kind == rules::judged_in_past);
+    CHECK(judged[0].values[0] == 1);
+    CHECK(judged[0].values[1] == 30000);
+    CHECK(judged[0].values[2] == 50000);
+    CHECK(judged[0].values[3] == std::lround(victim_radius * 1000.0f));
     const auto& events = g.r.events();
     const auto told = std::find_if(events.begin(), events.end(), [](const rules::game_event& e) {
         return e.kind == rules::event_kind::shot_rewound;
@@ -544,4 +554,28 @@ TEST_CASE("the hit history keeps a bounded past and interpolates between ticks",
     CHECK(at(10 * 256) == 190);
     CHECK(at(10 * 256 + 128) == Approx(189.5f));
     CHECK(at(world::max_rewind) == 136);  // the most an input rewinds: 64 ticks back
+}
+
+// A target of the past may be gone from the present (a rock split since): a sweep that meets
+// it hits nothing, and nothing is told.
+TEST_CASE("each hit judged in the past is told once, with its shooter and where", "[rules][asteroids][lag]") {
+    game g(asteroids_game());
+    g.join(1);
+    uint32_t judged = 0, rock_hits = 0;
+    for (uint32_t t = 0; t < 3000; ++t) {
+        world::player_input in{0, 0.3f, rules::button_fire};
+        in.rewind = 5 * 256;
+        g.step({{world::body_id{g.r.body_of(1)}, in}});
+        for (const rules::declared_event& e : g.r.declared_events()) {
+            CHECK(e.kind == rules::judged_in_past);
+            CHECK(e.values[0] == 1);
+            CHECK(e.values[3] > 0);
+            ++judged;
+        }
+        for (const rules::game_event& e : g.r.events())
+            rock_hits += e.kind == rules::event_kind::rock_hit && e.player == 1 ? 1 : 0;
+    }
+    CHECK(rock_hits > 0);
+    CHECK(judged == rock_hits);
+    CHECK(judged == g.score(1).hits);
 }

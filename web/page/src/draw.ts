@@ -56,15 +56,20 @@ export interface HitMarker {
 }
 
 /** ?debug=lag: one shot's targets as the view its input carried showed them (what the server
- *  rewinds to), drawn as outlined circles fading over `life` ms. */
+ *  rewinds to), drawn as outlined circles fading over `life` ms; or, `judged`, the hitbox the
+ *  server hit when it judged the shot in the past (Asteroids' `judged_in_past` event), drawn
+ *  dashed in amber. */
 export interface LagShot {
   born: number;
   life: number;
   targets: { x: number; y: number; radius: number }[];
+  judged?: boolean;
 }
 
 export const HIT_COLOUR = '#ff3df2';
 export const LAG_COLOUR = '#4dff9a';
+/** ?debug=lag: the hitbox the server judged a shot against. */
+export const JUDGED_COLOUR = '#ffb020';
 
 // The kinds a server that sends no manifest means (Asteroids' before manifests); a game's own
 // tags come from its manifest (setTags).
@@ -185,15 +190,17 @@ export class Painter {
     g.restore();
   }
 
-  /** ?debug=lag: a shot's targets as the view it carried had them, outlined; how many drawn. */
+  /** ?debug=lag: a shot's targets as the view it carried had them, or the hitbox the server
+   *  judged, outlined; how many drawn. */
   private lagShot(s: LagShot, now: number): number {
     const t = (now - s.born) / s.life;
     if (t < 0 || t > 1) return 0;
     const { g } = this;
     g.save();
     g.globalAlpha = 1 - t;
-    g.strokeStyle = LAG_COLOUR;
+    g.strokeStyle = s.judged ? JUDGED_COLOUR : LAG_COLOUR;
     g.lineWidth = Math.max(1, this.scale * 0.12);
+    if (s.judged) g.setLineDash([4, 3]);
     for (const b of s.targets) {
       const [sx, sy] = this.toScreen(b.x, b.y);
       g.beginPath();

@@ -8,10 +8,11 @@
 // window.arenaPage holds the client and the page's figures, for tests and the console.
 // A game with a page module of its own (games/NAME/page.ts, game_page.ts) draws with it too.
 // A hit of this player's that the server confirms (a GameEvent naming it as the shooter) shows
-// as a magenta X at the target and "hit" under the centre, after the white flash the page shows
-// the moment its own bullet touched the target as drawn (src/claims.ts); ?debug=lag draws, for the player's
-// last shots, the targets as the view that shot's input carried showed them: the world the
-// server rewinds to judge the shot (docs/LAG_COMPENSATION.md).
+// as a magenta X at the target and "hit" under the centre, after the white flash the page
+// shows the moment its own bullet touched the target as drawn (src/claims.ts); ?debug=lag
+// draws, for the player's last shots, the targets as the view that shot's input carried showed
+// them (the world the server rewinds to judge the shot), and dashed, for each of its hits
+// judged in the past, the hitbox the server hit there (docs/LAG_COMPENSATION.md).
 import { gamePages } from '@arena/game-pages';
 import { connect } from './arena-sdk.mjs';
 import type { ConnectOptions } from './arena-sdk.mjs';
@@ -92,6 +93,9 @@ interface PageState {
    *  over the frames, and in the last frame). */
   debugLag: boolean;
   lagShots: number;
+  /** ?debug=lag: the hitboxes the server judged this player's shots against (Asteroids'
+   *  `judged_in_past` events), each outlined dashed in amber. */
+  lagJudged: number;
   lagShapesDrawn: number;
   lagShapes: number;
   /** The Welcome's tick rate (0 before it). */
@@ -109,7 +113,7 @@ function newPageState(spectating: boolean): PageState {
     client: null, spectating, drawn: 0, playerId: 0, entityId: 0, serverOwn: null, view: { tick: 0, bodies: [] }, snapshots: 0, frames: 0, fps: 0,
     snapshotRate: 0, predictionError: null, predictionErrorMax: 0, predictionErrors: [], arrivalToRender: [], events: 0, predictedShotsDrawn: 0,
     bye: null, error: '', match: '', mode: '', invite: '', lobby: null, game: null, records: [], gamePage: '', gamePageFrames: 0,
-    hitsConfirmed: 0, hitsClaimed: 0, debugLag: false, lagShots: 0, lagShapesDrawn: 0, lagShapes: 0, tickRate: 0,
+    hitsConfirmed: 0, hitsClaimed: 0, debugLag: false, lagShots: 0, lagJudged: 0, lagShapesDrawn: 0, lagShapes: 0, tickRate: 0,
   };
 }
 
@@ -243,7 +247,14 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
     const text = eventText(page.game, r.kind, r.values, nameOf);
     page.records.push({ kind: r.kind, values: r.values, text });
     if (page.records.length > 256) page.records.shift();
-    hud.flashStatus(text);
+    if (text) hud.flashStatus(text);
+    // ?debug=lag: a shot of this player's judged in the past, with the hitbox the server hit.
+    if (page.debugLag && page.game.events[r.kind]?.name === 'judged_in_past' && r.values[0] === page.playerId) {
+      const [, x, y, radius] = r.values;
+      lagShots.push({ born: performance.now(), life: LAG_MS, targets: [{ x: x / 1000, y: y / 1000, radius: radius / 1000 }], judged: true });
+      if (lagShots.length > LAG_SHOTS) lagShots.shift();
+      ++page.lagJudged;
+    }
   });
   client.on('event', (e: { kind: number; body: number; player: number; other: number; size: number; value: number }) => {
     ++page.events;
@@ -327,7 +338,7 @@ async function play(page: PageState, query: PageQuery): Promise<void> {
       const bullet = bulletKind();
       const targets = bodies
         .filter((b) => !b.predicted && b.owner !== page.playerId && b.kind !== bullet && b.id !== 0)
-        .map((b) => ({ x: b.x, y: b.y, radius: b.shape?.radius ?? 1 }));
+        .map((b) => ({ x: b.x, y: b.y, radius: boundingRadius(b) }));
       views.push({ moment: state.view.tick * 256 + state.view.fraction, targets });
       if (views.length > LAG_VIEWS) views.shift();
       lagShots = lagShots.filter((s) => now - s.born < s.life);

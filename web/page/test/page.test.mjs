@@ -239,17 +239,21 @@ test('confirmed hits are marked, and ?debug=lag draws the targets as each shot\'
       hud: document.getElementById('hits').dataset.total,
       shown: !document.getElementById('hits').hidden,
       lagShots: window.arenaPage.lagShots,
+      lagJudged: window.arenaPage.lagJudged,
       lagShapesDrawn: window.arenaPage.lagShapesDrawn,
       serverHits: window.arenaPage.client.players.get(window.arenaPage.playerId)?.hits ?? 0,
       view: window.arenaPage.client.viewMoment,
       tick: window.arenaPage.client.session.viewTick,
     }));
-    console.log(`the page saw ${during.claimed} hits, the server confirmed ${during.hits} (its scoreboard: ${during.serverHits}); ?debug=lag showed ${during.lagShots} shots, ` +
+    console.log(`the page saw ${during.claimed} hits, the server confirmed ${during.hits} (its scoreboard: ${during.serverHits}); ?debug=lag showed ${during.lagShots} shots and ${during.lagJudged} judged hitboxes, ` +
                 `${during.lagShapesDrawn} outlined targets over the frames; the view drawn ${during.view ? during.tick - during.view.tick : '?'} ticks behind the newest snapshot`);
     assert.ok(during.hits > 0, 'the server confirmed hits of the shooter');
     assert.ok(during.claimed > 0, 'the page flashed the hits it saw before any verdict');
     assert.equal(Number(during.hud), during.hits, 'the HUD counts them');
     assert.ok(during.lagShots > 0, 'the overlay showed shots');
+    // The hits the server judged in the past (the page's inputs carry their view's moment) came
+    // with where: each drew its hitbox.
+    assert.ok(during.lagJudged > 0 && during.lagJudged <= during.hits, 'the overlay drew the hitboxes of hits the server judged in the past');
     assert.ok(during.lagShapesDrawn > 0, 'the overlay drew their targets');
     assert.ok(during.view && during.view.tick < during.tick, 'the inputs carry a view behind the newest snapshot');
     // The overlay fades: a second after the last shot it draws nothing.
