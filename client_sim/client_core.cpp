@@ -220,7 +220,11 @@ void client_core::take_game() {
         if (judge_hits_ && e.kind == protocol::GameEventKind::respawn) shown_.came(e.body, e.tick);
         if (e.kind == protocol::GameEventKind::shot_rewound && e.player == me) rewound_hits_[e.body] = e.value;
         if (e.kind == protocol::GameEventKind::ship_destroyed && e.player == me && e.other != 0) lost_to_shot(e);
-        if (e.kind == protocol::GameEventKind::respawn) respawned_[e.body] = e.tick;
+        if (e.kind == protocol::GameEventKind::respawn) {
+            // Kept while the ship may still be invulnerable: a bounded map.
+            std::erase_if(respawned_, [&](const auto& r) { return r.second + invulnerable_ticks() <= e.tick; });
+            respawned_[e.body] = e.tick;
+        }
         events_.push_back(e);
         if (events_.size() > max_kept_events) events_.pop_front();
     }
@@ -332,9 +336,9 @@ void client_core::on_tick(std::uint64_t tick, time_ns now) {
 }
 
 bool client_core::invulnerable(std::uint32_t ship, std::uint32_t tick) const {
-    // Asteroids' default span (asteroids_params::invulnerable_ticks: 2 s) after a respawn, and
-    // after the first view for the ships that joined with this player (joins are not events).
-    const std::uint32_t span = 2u * session_.tick_rate();
+    // After a respawn, and after the first view for the ships that joined with this player
+    // (joins are not events).
+    const std::uint32_t span = invulnerable_ticks();
     if (tick < first_view_tick_ + span) return true;
     const auto it = respawned_.find(ship);
     return it != respawned_.end() && tick < it->second + span;

@@ -205,7 +205,9 @@ private:
     hit_registration hits_;
     std::uint32_t first_view_tick_ = 0;
     std::map<std::uint32_t, std::uint32_t> respawned_;  // ship body id -> tick of its respawn
-    shown_view shown_;                                  // what it shows of the others (Asteroids bots: judge_hits_)
+    // Asteroids' default span of a new ship's invulnerability (asteroids_params::invulnerable_ticks: 2 s).
+    [[nodiscard]] std::uint32_t invulnerable_ticks() const { return 2u * session_.tick_rate(); }
+    shown_view shown_;  // what it shows of the others (Asteroids bots: judge_hits_)
     std::deque<std::pair<std::uint32_t, std::uint32_t>> rewinds_;  // (input sequence, its view's rewind), oldest first
     std::map<std::uint32_t, std::uint32_t> rewound_hits_;  // own ship body id -> the rewind it was hit at (1/256 ticks)
 

@@ -234,11 +234,12 @@ void asteroids_rules::after_step(world::world& w) {
         const uint32_t target = rewound.id;
         if (used(bullet) || used(target)) return;
         // Where the shot was judged, for its shooter's ?debug=lag (in mm: the event's values are
-        // integers; lround of a float is exact on every target). Told only for a hit: a target
-        // of the past may be gone from the present.
+        // integers; rounding a float is exact on every target, and an open world's far body is
+        // clamped within int32). Told only for a hit: a target of the past may be gone from the
+        // present.
         const auto told = [&] {
             const auto mm = [](world::real v) {
-                return static_cast<int32_t>(std::lround(v * 1000.0f));
+                return static_cast<int32_t>(std::llround(std::clamp(v * 1000.0f, -2e9f, 2e9f)));
             };
             judged_.push_back({judged_in_past,
                                {static_cast<int32_t>(bullets_[bullet].owner), mm(rewound.position.x()),
