@@ -2,14 +2,42 @@
 // Drives a match as a transport does: each message is encoded, verified and handed to
 // match::receive(), so that the tests go through admission exactly as bytes from a socket do.
 #include <catch2/catch.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "protocol/decode.hpp"
 #include "protocol/messages.hpp"
 #include "protocol/verify.hpp"
 #include "server/match/match.hpp"
+#include "server/world/presets.hpp"
 
 namespace arena::match_test {
+
+// A connection that drops whatever the match sends it and keeps only why it was closed.
+struct quiet_client : match::connection {
+    quiet_client() = default;
+    explicit quiet_client(std::string peer) : from(std::move(peer)) {}
+    std::string from = "10.0.0.9:4000";
+    std::optional<protocol::RejectCode> rejected;
+    std::string detail;
+    void send(protocol::frame_bytes) override {}
+    void send_snapshot(const protocol::snapshot_encoder&, uint32_t) override {}
+    void send_snapshot_frame(std::span<const uint8_t>) override {}
+    void close(protocol::RejectCode code, std::string_view why) override {
+        rejected = code;
+        detail = why;
+    }
+    void close_with_bye(std::string_view) override {}
+    std::string_view peer() const override { return from; }
+};
+
+// The asteroids preset without rocks: the players' ships alone.
+inline world::world_config rockless_asteroids() {
+    world::world_config w = world::asteroids_preset();
+    w.rocks.count = 0;
+    return w;
+}
 
 // Hands one encoded client message to the match; false: the match ended the connection.
 inline bool deliver(match::match& m, match::connection& c, const protocol::frame_bytes& frame) {

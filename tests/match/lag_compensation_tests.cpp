@@ -15,21 +15,6 @@ using namespace arena::match_test;
 
 namespace {
 
-struct client : match::connection {
-    void send(protocol::frame_bytes) override {}
-    void send_snapshot(const protocol::snapshot_encoder&, uint32_t) override {}
-    void send_snapshot_frame(std::span<const uint8_t>) override {}
-    void close(protocol::RejectCode, std::string_view) override {}
-    void close_with_bye(std::string_view) override {}
-    std::string_view peer() const override { return "10.0.0.9:4000"; }
-};
-
-world::world_config small_world() {
-    world::world_config w = world::asteroids_preset();
-    w.rocks.count = 0;
-    return w;
-}
-
 // The rewinds the world got for one player's inputs, one a tick, after the inputs `sent`
 // (sequences 1, 2... from `first_tick` on) each made from the view `view_of(sequence)`.
 struct rewinds {
@@ -40,8 +25,8 @@ struct rewinds {
 rewinds run(uint32_t lag_compensation_ms, uint32_t inputs, uint64_t (*view_of)(uint32_t tick, uint32_t sequence)) {
     match::match_config config;
     config.lag_compensation_ms = lag_compensation_ms;
-    match::match m(config, small_world());
-    client c;
+    match::match m(config, rockless_asteroids());
+    quiet_client c;
     REQUIRE(join(m, c, {protocol::protocol_version, "ann", ""}) != 0);
     for (int t = 0; t < 100; ++t) m.tick();  // a world tick of 100: views up to 100 ticks back exist
     rewinds out;

@@ -18,26 +18,6 @@ using protocol::RejectCode;
 
 namespace {
 
-struct client : match::connection {
-    std::optional<RejectCode> rejected;
-    std::string detail;
-    void send(protocol::frame_bytes) override {}
-    void send_snapshot(const protocol::snapshot_encoder&, uint32_t) override {}
-    void send_snapshot_frame(std::span<const uint8_t>) override {}
-    void close(RejectCode code, std::string_view why) override {
-        rejected = code;
-        detail = why;
-    }
-    void close_with_bye(std::string_view) override {}
-    std::string_view peer() const override { return "10.0.0.9:4000"; }
-};
-
-world::world_config small_world() {
-    world::world_config w = world::asteroids_preset();
-    w.rocks.count = 0;
-    return w;
-}
-
 // Input n's thrust is n / 100: what the world applied tells which input it was.
 protocol::input_msg input(uint32_t sequence, std::vector<uint32_t> earlier = {}) {
     protocol::input_msg in{sequence, static_cast<float>(sequence) / 100.0f, 0.0f, 0};
@@ -48,8 +28,8 @@ protocol::input_msg input(uint32_t sequence, std::vector<uint32_t> earlier = {})
 }  // namespace
 
 TEST_CASE("earlier inputs are taken in order, each once, before the Input that carries them", "[match][udp]") {
-    match::match m({}, small_world());
-    client c;
+    match::match m({}, rockless_asteroids());
+    quiet_client c;
     REQUIRE(join(m, c, {protocol::protocol_version, "ann", ""}) != 0);
     m.tick();  // the join: the body enters the world
     std::vector<float> applied;
@@ -77,8 +57,8 @@ TEST_CASE("earlier inputs are taken in order, each once, before the Input that c
 }
 
 TEST_CASE("inputs that neither came nor were repeated are counted lost", "[match][udp]") {
-    match::match m({}, small_world());
-    client c;
+    match::match m({}, rockless_asteroids());
+    quiet_client c;
     REQUIRE(join(m, c, {protocol::protocol_version, "ann", ""}) != 0);
     REQUIRE(send_input(m, c, input(1)));
     REQUIRE(send_input(m, c, input(5, {3, 4})));  // 2 is gone for good
@@ -105,8 +85,8 @@ TEST_CASE("an Input's earlier list out of order, too long or not finite is refus
     };
     for (const bad_case& bad : cases) {
         INFO(bad.what);
-        match::match m({}, small_world());
-        client c;
+        match::match m({}, rockless_asteroids());
+        quiet_client c;
         REQUIRE(join(m, c, {protocol::protocol_version, "ann", ""}) != 0);
         CHECK_FALSE(send_input(m, c, bad.in));
         CHECK(c.rejected == RejectCode::bad_input);

@@ -19,18 +19,6 @@ using arena::replay::testing::temp_file;
 
 namespace {
 
-// A client that keeps nothing: the test reads the match's and the replay's scoreboards.
-struct quiet_client : match::connection {
-    std::string from;
-    explicit quiet_client(std::string peer) : from(std::move(peer)) {}
-    void send(protocol::frame_bytes) override {}
-    void send_snapshot(const protocol::snapshot_encoder&, uint32_t) override {}
-    void send_snapshot_frame(std::span<const uint8_t>) override {}
-    void close(protocol::RejectCode, std::string_view) override {}
-    void close_with_bye(std::string_view) override {}
-    std::string_view peer() const override { return from; }
-};
-
 std::string live_scoreboard(const match::match& m) {
     std::vector<rules::score_line> lines;
     std::vector<std::string> names;
