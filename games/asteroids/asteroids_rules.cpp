@@ -27,6 +27,17 @@ constexpr real half_area_scale = 0.70710678f;
 // Keeps a ship's rng apart from anything else seeded by the world's hash.
 constexpr uint64_t rng_salt = 0x61737465726f6964ULL;  // "asteroid"
 
+// The judged_in_past event of `shooter`'s hit on `rewound`, for its ?debug=lag: in mm, as the
+// event's values are integers (rounding a float is exact on every target; an open world's far
+// body is clamped within int32).
+declared_event judged_event(uint32_t shooter, const hit_history::target& rewound) {
+    const auto mm = [](real v) {
+        return static_cast<int32_t>(std::llround(std::clamp(v * 1000.0f, -2e9f, 2e9f)));
+    };
+    return {judged_in_past,
+            {static_cast<int32_t>(shooter), mm(rewound.position.x()), mm(rewound.position.y()), mm(rewound.radius)}};
+}
+
 }  // namespace
 
 asteroids_rules::asteroids_rules(world::world& w, const asteroids_params& params)
@@ -233,27 +244,17 @@ void asteroids_rules::after_step(world::world& w) {
     judge_rewound(w, [&](uint32_t bullet, const hit_history::target& rewound) {
         const uint32_t target = rewound.id;
         if (used(bullet) || used(target)) return;
-        // Where the shot was judged, for its shooter's ?debug=lag (in mm: the event's values are
-        // integers; rounding a float is exact on every target, and an open world's far body is
-        // clamped within int32). Told only for a hit: a target of the past may be gone from the
-        // present.
-        const auto told = [&] {
-            const auto mm = [](world::real v) {
-                return static_cast<int32_t>(std::llround(std::clamp(v * 1000.0f, -2e9f, 2e9f)));
-            };
-            judged_.push_back({judged_in_past,
-                               {static_cast<int32_t>(bullets_[bullet].owner), mm(rewound.position.x()),
-                                mm(rewound.position.y()), mm(rewound.radius)}});
-        };
-        if (const auto rock = rocks_.find(target); rock != rocks_.end()) {
-            told();
+        const auto rock = rocks_.find(target);
+        // A target of the past may be gone from the present: then nothing is hit, nor told.
+        if (rock == rocks_.end() && player_of_ship(target) == nullptr) return;
+        judged_.push_back(judged_event(bullets_[bullet].owner, rewound));
+        if (rock != rocks_.end()) {
             const uint32_t size = rock->second;
             events_.push_back(
                 {event_kind::rock_hit, static_cast<uint8_t>(size), bullets_[bullet].owner, 0, target, points(size)});
             bullet_hits(bullet, target, points(size));
             split_rock(w, target, removals);
-        } else if (player_of_ship(target) != nullptr) {
-            told();
+        } else {
             const uint32_t victim = w.find(target)->owner;
             const uint32_t shooter = bullets_[bullet].owner;
             // The victim hears how far back it was hit: it may have seen itself clear by then.

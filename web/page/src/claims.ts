@@ -4,6 +4,7 @@
 // others as they were a round trip and an interpolation delay ago, and the server judges a shot
 // against that same past (docs/LAG_COMPENSATION.md): with compensation on, what flashes here is
 // what the server confirms. Bots count their claims the same way (client_sim/hit_registration.hpp).
+import { shortest } from './arena-sdk.mjs';
 import type { Body, Flash, World } from './draw.js';
 
 const CLAIM_FLASH_MS = 250;
@@ -39,14 +40,16 @@ export class ShotClaims {
    *  frame's new claims. */
   frame(world: World, bullets: OwnShot[], bulletRadius: number, targets: Body[], now: number): Flash[] {
     const flashes: Flash[] = [];
-    const shortest = (d: number, size: number) => (world.wraps && size > 0 ? d - Math.round(d / size) * size : d);
+    const way = (d: number, size: number) => (world.wraps && size > 0 ? shortest(d, size) : d);
+    const reaches = bullets.length > 0 ? targets.map((t) => bulletRadius + boundingRadius(t)) : [];
     for (const bullet of bullets) {
       if (this.claimedShots.has(bullet.sequence)) continue;
-      for (const t of targets) {
+      for (let k = 0; k < targets.length; ++k) {
+        const t = targets[k];
         if (this.claimedTargets.has(t.id)) continue;
-        const dx = shortest(t.x - bullet.x, world.width);
-        const dy = shortest(t.y - bullet.y, world.height);
-        const r = bulletRadius + boundingRadius(t);
+        const dx = way(t.x - bullet.x, world.width);
+        const dy = way(t.y - bullet.y, world.height);
+        const r = reaches[k];
         if (dx * dx + dy * dy > r * r) continue;
         this.claimedShots.add(bullet.sequence);
         this.claimedTargets.add(t.id);
