@@ -240,6 +240,10 @@ private:
     template <class Reader>
     const protocol::game_list* game_for(const Reader& r, uint32_t& through);
     uint32_t snapshot_interval() const;
+    // Delta clients whose player ids are the same after dividing by this get their snapshots on
+    // the same tick (send_snapshots): a match of up to this many players shares one tick's work,
+    // and a big one is still spread over the interval within a group's size.
+    static constexpr uint32_t snapshot_group = 16;
     tick_ring baseline_ring() const { return {config_.delta_history, snapshot_interval()}; }
 
     match_config config_;

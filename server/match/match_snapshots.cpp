@@ -45,10 +45,18 @@ void match::record_origin(uint32_t body_id, const rules::shot_record& shot) {
 void match::send_snapshots() {
     // BodyState clients all get theirs on the ticks that are multiples of the interval (one
     // shared frame when they see the whole world). Delta clients cost a view query and an
-    // encoding each, so they are spread over the interval by player id: a third of them on
-    // each tick at 60 Hz ticks and 20 Hz snapshots, not all of them on one tick.
+    // encoding each, so a big match spreads them over the interval in groups of player ids
+    // (snapshot_group): a third of them on each tick at 60 Hz ticks and 20 Hz snapshots, not
+    // all of them on one tick. A group's clients share their tick's work (one quantised state,
+    // one prepared encoder per acknowledged tick, the bytes when their views are the same), so
+    // a small match, one group, builds it once for all its players; matches start on
+    // different ticks, which spreads a process of many small matches over the interval.
     const uint32_t interval = snapshot_interval();
     const uint32_t phase = world_.tick() % interval;
+    // Player ids start at 1: players 1 to 16 are the first group.
+    const auto group_phase = [&](world::player_id id) {
+        return (id.value() - 1) / snapshot_group % interval;
+    };
     kinds_.forget_missing(world_.bodies());
     origins_.forget_missing(world_.bodies());
     // The shared frame (BodyState clients of whole-world views, on the interval's ticks)
@@ -60,7 +68,7 @@ void match::send_snapshots() {
     for (auto it = players_.begin(); it != players_.end();) {
         const world::player_id id = it->first;
         player& p = it->second;
-        if (p.body_id && p.who && (p.snapshots.delta ? id.value() % interval : 0) == phase) {
+        if (p.body_id && p.who && (p.snapshots.delta ? group_phase(id) : 0) == phase) {
             const size_t waiting = p.inputs.waiting();
             p.snapshots.extra_inputs_waiting =
                 static_cast<uint16_t>(waiting > 1 ? std::min<size_t>(waiting - 1, 65535) : 0);

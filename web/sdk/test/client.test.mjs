@@ -254,7 +254,8 @@ test('each Input carries the moment of the view drawn last: behind the newest sn
   assert.ok(carried.every((c) => Math.abs(c.delay - delay) < 0.01), 'the delay held (no jitter in the recorded frames)');
   assert.ok(median >= delay - interval - 1 && median <= delay + 0.5, `median ${median} ticks behind, the delay ${delay}`);
   assert.ok(sorted[0] >= -interval && sorted.at(-1) <= delay + 1, `from ${sorted[0]} to ${sorted.at(-1)} ticks behind`);
-  assert.ok(fractions.size > 20, `the fraction varies: ${fractions.size} values`);
+  // The draws fall at 16 offsets within a tick; where the snapshots fall adds a few more.
+  assert.ok(fractions.size >= 16, `the fraction varies: ${fractions.size} values`);
 });
 
 test('momentOf: a server time as a tick and 1/256 ticks', () => {
