@@ -90,9 +90,20 @@ ssize_t recv_timed(int fd, std::span<uint8_t> buffer, int64_t& held_ns) {
     return n;
 }
 
+// One system call's worth of `frames`: a lone frame (a tick's snapshot, most writes) by send,
+// which spares the kernel copying in a message header and an iovec array; more by sendmsg.
+ssize_t send_some(int fd, std::span<iovec> frames) {
+    constexpr int flags = MSG_DONTWAIT | MSG_NOSIGNAL;
+    if (frames.size() == 1) return ::send(fd, frames[0].iov_base, frames[0].iov_len, flags);
+    msghdr message{};
+    message.msg_iov = frames.data();
+    message.msg_iovlen = std::min<size_t>(frames.size(), IOV_MAX);
+    return ::sendmsg(fd, &message, flags);
+}
+
 }  // namespace
 
-void session::read_available(std::span<uint8_t> buffer) {
+void session::read_available(std::span<uint8_t> buffer, int64_t now_ns) {
     // What is there, without waiting: the server calls this once per tick for every session,
     // so one recv serves every input that arrived since the last tick (a client sends about one
     // per tick). Waiting for readability cost an epoll_ctl per input (Asio re-arms the socket)
@@ -115,7 +126,7 @@ void session::read_available(std::span<uint8_t> buffer) {
         const auto got = static_cast<size_t>(n);
         owner_.host().intake().count_bytes(got);
         // Rates are measured in real time: after a stall of the server, what queued is read at once.
-        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), owner_.host().now_ns(), held_ns)) return;
+        if (!take_frames(std::span<const uint8_t>(buffer.data(), got), now_ns, held_ns)) return;
         if (got < buffer.size()) return;  // the socket is drained: the next recv would find nothing
     }
 }
@@ -168,10 +179,7 @@ void session::write_pending() {
             }
             writing_frames_ = batch.size();
         }
-        msghdr message{};
-        message.msg_iov = writing_.data() + writing_from_;
-        message.msg_iovlen = std::min<size_t>(writing_.size() - writing_from_, IOV_MAX);
-        const ssize_t n = ::sendmsg(fd_, &message, MSG_DONTWAIT | MSG_NOSIGNAL);
+        const ssize_t n = send_some(fd_, std::span<iovec>(writing_).subspan(writing_from_));
         if (n < 0 && errno == EINTR) continue;
         if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
             wait_for_room();

@@ -62,9 +62,12 @@ boost::asio::awaitable<void> tcp_transport::accept_loop() {
 
 void tcp_transport::read_before_tick() {
     // By index: a session that closes while it reads leaves a null (on_gone), and none is added.
+    // One clock reading for the pass: it takes a millisecond or two, far finer than the rates
+    // it times, and a reading per recv was a cost of its own.
     reading_sessions_ = true;
+    const int64_t now = host_.now_ns();
     for (size_t i = 0; i < sessions_.size(); ++i)
-        if (session* s = sessions_[i].get()) s->read_available(read_buffer_);
+        if (session* s = sessions_[i].get()) s->read_available(read_buffer_, now);
     reading_sessions_ = false;
     if (!gone_.empty()) {
         std::erase(sessions_, nullptr);
