@@ -238,7 +238,7 @@ private:
     void send_snapshot(Reader& r, world::body_id own, uint32_t ack);
     // Into game_list_: what `r`'s snapshot at this tick carries of the game.
     template <class Reader>
-    const protocol::game_list* game_for(const Reader& r, uint32_t& through);
+    const protocol::game_list* game_for(Reader& r, uint32_t& through);
     uint32_t snapshot_interval() const;
     // Delta clients whose player ids are the same after dividing by this get their snapshots on
     // the same tick (send_snapshots): a match of up to this many players shares one tick's work,

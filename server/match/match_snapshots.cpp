@@ -89,11 +89,11 @@ void match::send_snapshots() {
 }
 
 template <class Reader>
-const protocol::game_list* match::game_for(const Reader& r, uint32_t& through) {
+const protocol::game_list* match::game_for(Reader& r, uint32_t& through) {
     if (game_.empty()) return nullptr;
     uint32_t held = 0;
     if (r.snapshots.delta) {
-        held = r.snapshots.game_held;  // what its acknowledged snapshots brought
+        held = r.snapshots.game_held();  // what its acknowledged snapshots brought
     } else {
         held = r.game_sent;  // a stream: what was sent arrived
     }

@@ -51,22 +51,27 @@ struct snapshot_client {
     bool delta = false;                 // the client decodes delta snapshots
     size_t budget = 0;                  // delta clients: bytes a snapshot frame may take; 0: no limit
     uint32_t acked_tick = 0;            // its newest Input.snapshot_ack; 0: none
-    uint32_t game_held = 0;             // the game's version it holds (game_feed.hpp): the most its acks brought
     uint16_t extra_inputs_waiting = 0;  // its inputs waiting beyond the first, told in its next delta frame
     client_views views;                 // what its recent snapshots held
     shape_tracker shapes;               // which shapes it holds
     uint32_t shared_tick = 0;           // BodyState clients of a whole-world view: the tick of its last frame
     priority_accumulator priorities;    // with a budget: which bodies go in next
 
-    // An Input's snapshot_ack (inputs come in order: the newest). A snapshot still kept adds
-    // what it brought of the game; an older one changes nothing, so an ack that comes back
-    // after a long loss does not make the client look as if it held nothing.
-    void acknowledge(uint32_t tick) {
-        // Inputs come three to a snapshot, most acking the same one: what it brought is known.
-        if (tick == acked_tick) return;
-        acked_tick = tick;
-        game_held = std::max(game_held, views.game_at(tick));
+    // An Input's snapshot_ack (inputs come in order: the newest).
+    void acknowledge(uint32_t tick) { acked_tick = tick; }
+
+    // The game's version it holds (game_feed.hpp): the most its acknowledged snapshots brought.
+    // A snapshot still kept adds what it brought; an older one changes nothing, so an ack that
+    // comes back after a long loss does not make the client look as if it held nothing. Asked
+    // when its next snapshot is built, not at every ack: reading its record then was a cache
+    // miss per Input, and the newest ack brought the most (a later snapshot carries more).
+    uint32_t game_held() {
+        game_held_ = std::max(game_held_, views.game_at(acked_tick));
+        return game_held_;
     }
+
+private:
+    uint32_t game_held_ = 0;
 };
 
 struct fanout_counters {
