@@ -1,22 +1,16 @@
 // Fuzz target: the replay-file reader. The bytes go to a file (the reader reads files), then
 // every record is read until the end or the first error.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <string>
 
+#include "scratch_file.hpp"
 #include "server/replay/reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace arena;
-    static const std::string path = "/tmp/arena-fuzz-replay-" + std::to_string(::getpid()) + ".bin";
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) return 0;
-    std::fwrite(data, 1, size, f);
-    std::fclose(f);
-    auto opened = replay::reader::open(path);
+    static const fuzz::scratch_file file("arena-fuzz-replay");
+    if (!file.write({data, size})) return 0;
+    auto opened = replay::reader::open(file.path());
     if (!opened) return 0;
     replay::reader& r = opened.value;
     for (int records = 0; records < 100000; ++records) {

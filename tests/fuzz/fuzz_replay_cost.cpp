@@ -3,24 +3,18 @@
 // for either by the bound on start_tick (a minute at the highest tick rate a server runs) or by
 // a record of at least 16 bytes of the file. An input that the reader lets through with more
 // world steps than that, or with a tick of more joins than a server admits, aborts.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
-#include <string>
 
+#include "scratch_file.hpp"
 #include "server/replay/reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace arena::replay;
-    static const std::string path = "/tmp/arena-fuzz-replay-cost-" + std::to_string(::getpid()) + ".bin";
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) return 0;
-    std::fwrite(data, 1, size, f);
-    std::fclose(f);
-    auto opened = reader::open(path);
+    static const arena::fuzz::scratch_file file("arena-fuzz-replay-cost");
+    if (!file.write({data, size})) return 0;
+    auto opened = reader::open(file.path());
     if (!opened) return 0;
     reader& r = opened.value;
     constexpr uint64_t smallest_record = record_prefix_size + min_record_body + record_checksum_size;

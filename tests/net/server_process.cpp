@@ -10,9 +10,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -230,7 +232,17 @@ const protocol::Message* message_of(const std::vector<uint8_t>& frame) {
 }
 
 std::string temp_path(const std::string& name) {
-    return "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name;
+    // Every path handed out is removed when the test process ends, whatever the test did with it.
+    struct removed_at_exit {
+        std::set<std::string> paths;
+        ~removed_at_exit() {
+            for (const std::string& p : paths) std::remove(p.c_str());
+        }
+    };
+    static removed_at_exit scratch;
+    std::string path = "/tmp/arena-test-" + std::to_string(::getpid()) + "-" + name;
+    scratch.paths.insert(path);
+    return path;
 }
 
 std::string read_file(const std::string& path) {

@@ -91,7 +91,8 @@ struct http_server {
 // The verified Message inside a frame read by test_client (aligned copy kept by the caller).
 const protocol::Message* message_of(const std::vector<uint8_t>& frame);
 
-// A path in /tmp unique to this test process, for a --stats-json or --record file.
+// A path in /tmp unique to this test process, for a --stats-json or --record file; the file
+// is removed when the process ends.
 std::string temp_path(const std::string& name);
 // A whole file; empty when missing.
 std::string read_file(const std::string& path);
