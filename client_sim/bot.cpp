@@ -24,8 +24,8 @@ constexpr int slow_reader_buffer_bytes = 4096;
 }  // namespace
 
 bot::bot(fleet& owner, client_params params)
-    : fleet_(owner),
-      core_(owner, params),
+    : bot_session(owner, params),
+      fleet_(owner),
       slow_reader_(params.mode == misbehavior::slow_reader),
       socket_(owner.io()),
       wake_(owner.io()),
@@ -126,26 +126,6 @@ void bot::sync() {
         return;
     }
     if (!core_.output().empty() || core_.closing()) wake_.cancel();
-}
-
-void bot::on_tick(std::uint64_t tick, time_ns now) {
-    core_.on_tick(tick, now);
-    sync();
-}
-
-void bot::finish() {
-    core_.finish();
-    sync();
-}
-
-void bot::abort(const std::string& reason) {
-    core_.abort(reason);
-    sync();
-}
-
-void bot::check_join_timeout(time_ns now) {
-    core_.check_join_timeout(now);
-    sync();
 }
 
 }  // namespace arena::bots

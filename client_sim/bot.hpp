@@ -29,28 +29,14 @@ public:
     // ends this bot's session only, with a reason.
     boost::asio::awaitable<void> run() override;
 
-    // One server tick passed: this tick's input, and a Ping once a second.
-    void on_tick(std::uint64_t tick, time_ns now) override;
-    // The run is over: send Bye, close once it is written.
-    void finish() override;
-    // Ends the session now, with this reason.
-    void abort(const std::string& reason) override;
-    // Gives up when no Welcome came within the join timeout.
-    void check_join_timeout(time_ns now) override;
-
-    [[nodiscard]] bool ended() const override { return core_.ended(); }
-    [[nodiscard]] const bot_outcome& outcome() const override { return core_.outcome(); }
-    void add_final_figures(fleet_metrics& metrics) const override { core_.add_final_figures(metrics); }
-
 private:
     boost::asio::awaitable<void> reader();
     boost::asio::awaitable<void> writer();
     // After every call into the core: close the socket if it ended, else wake the writer if
     // it queued something.
-    void sync();
+    void sync() override;
 
     fleet& fleet_;
-    client_core core_;
     bool slow_reader_;
     bool closed_ = false;
 

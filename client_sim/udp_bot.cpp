@@ -39,12 +39,12 @@ protocol::Payload payload_of(std::span<const std::uint8_t> frame) {
 }  // namespace
 
 udp_bot::udp_bot(fleet& owner, client_params params, simulated_delay delay)
-    : fleet_(owner),
-      core_(owner,
-            [&] {
-                params.unordered = true;
-                return params;
-            }()),
+    : bot_session(owner,
+                  [&] {
+                      params.unordered = true;
+                      return params;
+                  }()),
+      fleet_(owner),
       delay_(delay),
       jitter_rng_(params.seed * 0x9E3779B97F4A7C15ULL + params.index),
       readable_(owner.io()),
@@ -231,27 +231,6 @@ void udp_bot::close_transport() {
     boost::system::error_code ignored;
     readable_.cancel(ignored);
     timer_.cancel();
-}
-
-void udp_bot::on_tick(std::uint64_t tick, time_ns now) {
-    if (core_.ended()) return;
-    core_.on_tick(tick, now);
-    sync();
-}
-
-void udp_bot::finish() {
-    core_.finish();
-    sync();
-}
-
-void udp_bot::abort(const std::string& reason) {
-    core_.abort(reason);
-    sync();
-}
-
-void udp_bot::check_join_timeout(time_ns now) {
-    core_.check_join_timeout(now);
-    sync();
 }
 
 }  // namespace arena::bots

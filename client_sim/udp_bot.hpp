@@ -37,13 +37,6 @@ public:
     udp_bot& operator=(const udp_bot&) = delete;
 
     boost::asio::awaitable<void> run() override;
-    void on_tick(std::uint64_t tick, time_ns now) override;
-    void finish() override;
-    void abort(const std::string& reason) override;
-    void check_join_timeout(time_ns now) override;
-    [[nodiscard]] bool ended() const override { return core_.ended(); }
-    [[nodiscard]] const bot_outcome& outcome() const override { return core_.outcome(); }
-    void add_final_figures(fleet_metrics& metrics) const override { core_.add_final_figures(metrics); }
 
 private:
     struct delayed {
@@ -55,14 +48,13 @@ private:
     // ENet's events, without waiting.
     void service();
     // Moves the core's output into ENet (through the delay line), closes when the core says.
-    void sync();
+    void sync() override;
     void send_now(const delayed& d);
     void deliver_due(time_ns now);
     time_ns delay_ns(bool reliable, time_ns& last_reliable);
     void close_transport();
 
     fleet& fleet_;
-    client_core core_;
     simulated_delay delay_;
     world::rng jitter_rng_;
     ENetHost* host_ = nullptr;

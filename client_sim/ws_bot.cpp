@@ -41,7 +41,7 @@ struct ws_bot::io {
 };
 
 ws_bot::ws_bot(fleet& owner, client_params params)
-    : fleet_(owner), core_(owner, params), io_(std::make_unique<io>(owner.io())) {}
+    : bot_session(owner, params), fleet_(owner), io_(std::make_unique<io>(owner.io())) {}
 
 ws_bot::~ws_bot() = default;
 
@@ -159,26 +159,6 @@ void ws_bot::sync() {
         return;
     }
     if (!core_.output().empty() || core_.closing()) io_->wake.cancel();
-}
-
-void ws_bot::on_tick(std::uint64_t tick, time_ns now) {
-    core_.on_tick(tick, now);
-    sync();
-}
-
-void ws_bot::finish() {
-    core_.finish();
-    sync();
-}
-
-void ws_bot::abort(const std::string& reason) {
-    core_.abort(reason);
-    sync();
-}
-
-void ws_bot::check_join_timeout(time_ns now) {
-    core_.check_join_timeout(now);
-    sync();
 }
 
 }  // namespace arena::bots

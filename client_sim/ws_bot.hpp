@@ -24,14 +24,6 @@ public:
     ws_bot& operator=(const ws_bot&) = delete;
 
     boost::asio::awaitable<void> run() override;
-    void on_tick(std::uint64_t tick, time_ns now) override;
-    void finish() override;
-    void abort(const std::string& reason) override;
-    void check_join_timeout(time_ns now) override;
-
-    [[nodiscard]] bool ended() const override { return core_.ended(); }
-    [[nodiscard]] const bot_outcome& outcome() const override { return core_.outcome(); }
-    void add_final_figures(fleet_metrics& metrics) const override { core_.add_final_figures(metrics); }
 
 private:
     struct io;  // the Beast stream and the writer's wake-up, in ws_bot.cpp
@@ -39,10 +31,9 @@ private:
     boost::asio::awaitable<void> reader();
     boost::asio::awaitable<void> writer();
     // After every call into the core: close the stream if it ended, else wake the writer.
-    void sync();
+    void sync() override;
 
     fleet& fleet_;
-    client_core core_;
     bool closed_ = false;
     bool open_ = false;  // the upgrade succeeded
     std::unique_ptr<io> io_;
