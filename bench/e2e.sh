@@ -6,7 +6,7 @@
 # and Arena under the same 200-client load in the same minute; then 50 matches of 8 in one process
 # against Colyseus's own matchmaker filling rooms of 8. One markdown table per part.
 # Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), E2E_LARGE (1000), E2E_LARGE_RADIUS (50),
-#      E2E_ROOMS_BOTS (400), COLYSEUS (../shared/peers/colyseus),
+#      E2E_ROOMS_BOTS (400), E2E_ROOMS_RUNS (1), COLYSEUS (../shared/peers/colyseus),
 #      E2E_PARTS ("one colyseus rooms": which parts run).
 set -euo pipefail
 bin=${1:-build/bin}
@@ -87,27 +87,38 @@ fi
 # Many matches in one process: E2E_ROOMS_BOTS bots join-or-create matches of 8 (50 matches at
 # 400), every body of a match in view, against Colyseus' matchmaker filling rooms of 8
 # (ROOM_SIZE=8) and the TCP floor with the same clients and Arena's snapshot size.
+# E2E_ROOMS_RUNS (1) repeats the three, one table per run, then the ratios' medians: a run's
+# figures swing by 10 % or more on a shared machine.
 rooms_bots=${E2E_ROOMS_BOTS:-400}
+rooms_runs=${E2E_ROOMS_RUNS:-1}
 part rooms || exit 0
-echo >&2
-echo "running Arena with $rooms_bots bots in matches of 8..." >&2
-echo '{"modes": [{"name": "room8", "preset": "asteroids", "rules": "sandbox", "max_players": 8,
-  "world": {"rocks": {"count": 0}}}]}' > "$work/modes.json"
-run_arena "$rooms_bots" arena-rooms "--modes $work/modes.json --view-radius 0 --threads 1 --max-matches 1000" \
-  "--mode room8"
 echo
 echo "## Many matches in one process: $rooms_bots clients in matches of 8, 60 inputs/s each, every body of a match in view, server on CPU 1"
-echo
-if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
-  echo "running Colyseus with $rooms_bots clients in rooms of 8..." >&2
-  ROOM_SIZE=8 "$colyseus/run.sh" "$rooms_bots" "$seconds" > "$work/colyseus-rooms.json" 2> "$work/colyseus-rooms.log" \
-    || { tail -20 "$work/colyseus-rooms.log" >&2; }
-  snapshot_bytes=$(python3 -c "import json; print(max(1, round(json.load(open('$work/arena-rooms.bots.json'))['figures']['snapshot_bytes']['mean'])))")
-  echo "running the TCP floor with $rooms_bots clients and $snapshot_bytes-byte snapshots..." >&2
-  taskset -c 0,1 "$bin/arena-bench-tcp-floor" --clients "$rooms_bots" --seconds "$seconds" \
-    --snapshot-bytes "$snapshot_bytes" > "$work/tcp-floor-rooms.json" || echo "tcp floor run failed" >&2
+echo '{"modes": [{"name": "room8", "preset": "asteroids", "rules": "sandbox", "max_players": 8,
+  "world": {"rocks": {"count": 0}}}]}' > "$work/modes.json"
+for run in $(seq "$rooms_runs"); do
+  echo >&2
+  echo "running Arena with $rooms_bots bots in matches of 8 (run $run of $rooms_runs)..." >&2
+  run_arena "$rooms_bots" arena-rooms "--modes $work/modes.json --view-radius 0 --threads 1 --max-matches 1000" \
+    "--mode room8"
+  echo
+  if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
+    echo "running Colyseus with $rooms_bots clients in rooms of 8..." >&2
+    ROOM_SIZE=8 "$colyseus/run.sh" "$rooms_bots" "$seconds" > "$work/colyseus-rooms.json" 2> "$work/colyseus-rooms.log" \
+      || { tail -20 "$work/colyseus-rooms.log" >&2; }
+    snapshot_bytes=$(python3 -c "import json; print(max(1, round(json.load(open('$work/arena-rooms.bots.json'))['figures']['snapshot_bytes']['mean'])))")
+    echo "running the TCP floor with $rooms_bots clients and $snapshot_bytes-byte snapshots..." >&2
+    taskset -c 0,1 "$bin/arena-bench-tcp-floor" --clients "$rooms_bots" --seconds "$seconds" \
+      --snapshot-bytes "$snapshot_bytes" > "$work/tcp-floor-rooms.json" || echo "tcp floor run failed" >&2
+  fi
+  python3 "$here/e2e_table.py" rooms "$work"
+  mkdir -p "$work/rooms-run-$run"
+  cp "$work"/arena-rooms.*.json "$work"/*-rooms.json "$work/rooms-run-$run/" 2>/dev/null || true
+done
+if [ "$rooms_runs" -gt 1 ]; then
+  echo
+  python3 "$here/e2e_table.py" rooms-median "$work"/rooms-run-*
 fi
-python3 "$here/e2e_table.py" rooms "$work"
 echo
 echo "running arena-bench-matches (the matches alone, no sockets) on CPU 1..." >&2
 "${pin_server[@]}" "$bin/arena-bench-matches" --matches 200 --ticks 1200 > "$work/matches.json"

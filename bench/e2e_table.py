@@ -117,6 +117,26 @@ def rooms_table(work):
           f"share the core).")
 
 
+def rooms_ratios(work):
+    """(Arena / Colyseus, Arena / floor) of one run's folder; None where a figure is missing."""
+    a = arena_row(work, "arena-rooms")["cpu_per_s"]
+    c = last_json_line(f"{work}/colyseus-rooms.json")
+    t = last_json_line(f"{work}/tcp-floor-rooms.json")
+    return (a / (c["server_cpu_pct_of_core"] / 100) if c else None,
+            a / t["server_cpu_s_per_s"] if t else None)
+
+
+def rooms_median(works):
+    runs = [rooms_ratios(w) for w in works]
+    for k, (name, goal, unit) in enumerate([("Colyseus's", 0.33, ""), ("the floor's", 1.3, "x")]):
+        values = sorted(r[k] for r in runs if r[k] is not None)
+        if not values:
+            continue
+        middle = values[len(values) // 2] if len(values) % 2 else (values[len(values) // 2 - 1] + values[len(values) // 2]) / 2
+        listed = ", ".join(f"{v:.2f}{unit}" for v in values)
+        print(f"Over {len(values)} runs, Arena's CPU against {name}: median {middle:.2f}{unit} ({listed}; goal: at most {goal}{unit}).")
+
+
 def matches_table(work):
     m = last_json_line(f"{work}/matches.json")
     if m is None:
@@ -135,6 +155,8 @@ if __name__ == "__main__":
         arena_table(sys.argv[2], sys.argv[3:])
     elif sys.argv[1] == "rooms":
         rooms_table(sys.argv[2])
+    elif sys.argv[1] == "rooms-median":
+        rooms_median(sys.argv[2:])
     elif sys.argv[1] == "matches":
         matches_table(sys.argv[2])
     else:
