@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Tables for bench/e2e.sh from the server's --stats-json and the bots' --json files."""
 import json
+import statistics
 import sys
 
 
@@ -106,10 +107,11 @@ def rooms_table(work):
     if t is not None:
         print(f"| TCP floor: the same messages, no game | | {t['server_cpu_s_per_s']:.3f} | | | |")
     print()
-    if c is not None:
-        print(f"Arena's CPU is {a['cpu_per_s'] / c_cpu:.2f} of Colyseus's (goal: at most 0.33)", end="")
-        if t is not None:
-            print(f", {a['cpu_per_s'] / t['server_cpu_s_per_s']:.2f}x the floor's (goal: at most 1.3)", end="")
+    of_colyseus, of_floor = rooms_ratios(work)
+    if of_colyseus is not None:
+        print(f"Arena's CPU is {of_colyseus:.2f} of Colyseus's (goal: at most 0.33)", end="")
+        if of_floor is not None:
+            print(f", {of_floor:.2f}x the floor's (goal: at most 1.3)", end="")
         print(".")
     print(f"Whole tick p50 / p99 / max {a['tick']['p50']:.3f} / {a['tick']['p99']:.3f} / {a['tick']['max']:.3f} ms for "
           f"{len(matches)} matches: {per_match_ms:.3f} ms per 8-player match on average, so one core's 16.7 ms tick "
@@ -132,7 +134,7 @@ def rooms_median(works):
         values = sorted(r[k] for r in runs if r[k] is not None)
         if not values:
             continue
-        middle = values[len(values) // 2] if len(values) % 2 else (values[len(values) // 2 - 1] + values[len(values) // 2]) / 2
+        middle = statistics.median(values)
         listed = ", ".join(f"{v:.2f}{unit}" for v in values)
         print(f"Over {len(values)} runs, Arena's CPU against {name}: median {middle:.2f}{unit} ({listed}; goal: at most {goal}{unit}).")
 

@@ -22,8 +22,6 @@ class fleet;
 class bot : public bot_session {
 public:
     bot(fleet& owner, client_params params);
-    bot(const bot&) = delete;
-    bot& operator=(const bot&) = delete;
 
     // Connects, joins and plays until the session ends. Never throws: whatever goes wrong
     // ends this bot's session only, with a reason.

@@ -33,8 +33,6 @@ class udp_bot : public bot_session {
 public:
     udp_bot(fleet& owner, client_params params, simulated_delay delay);
     ~udp_bot() override;
-    udp_bot(const udp_bot&) = delete;
-    udp_bot& operator=(const udp_bot&) = delete;
 
     boost::asio::awaitable<void> run() override;
 

@@ -20,8 +20,6 @@ class ws_bot : public bot_session {
 public:
     ws_bot(fleet& owner, client_params params);
     ~ws_bot() override;
-    ws_bot(const ws_bot&) = delete;
-    ws_bot& operator=(const ws_bot&) = delete;
 
     boost::asio::awaitable<void> run() override;
 
