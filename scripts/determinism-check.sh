@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Cross-compiler and cross-architecture determinism check (docs/DETERMINISM.md): the golden
-# recordings (a scripted sandbox session, and a live Asteroids match under the game's rules)
+# recordings (a scripted sandbox session, a live Asteroids match under the game's rules, and
+# the scripted session in the sub-stepped pyramid preset)
 # must replay to the same hash at every tick from clang++ and g++ builds at -O0,
 # -O2 and -O3, and from aarch64 builds (Debian's g++-aarch64-linux-gnu, static, run under
 # qemu-aarch64-static) at -O0, -O2 and -O3. Builds only arena-replay and its libraries (world,
@@ -14,7 +15,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 release=${1:-build}
 case $release in /*) ;; *) release=$root/$release ;; esac
-goldens=("$root/tests/data/golden_asteroids.arpl" "$root/tests/data/golden_asteroids_rules.arpl")
+goldens=("$root/tests/data/golden_asteroids.arpl" "$root/tests/data/golden_asteroids_rules.arpl"
+  "$root/tests/data/golden_pyramid.arpl")
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 

@@ -51,13 +51,13 @@ void soft_contact_solver::step(std::span<body> bodies, std::span<contact> contac
     }
     for (uint32_t k = 0; k < n; ++k) {
         integrate_velocities();
-        warm_start(contacts);
-        for (int pass = 0; pass < soft_passes; ++pass) solve<true>(contacts, h, soft);
+        warm_start();
+        for (int pass = 0; pass < soft_passes; ++pass) solve<true>(h, soft);
         integrate_positions(h);
-        solve<false>(contacts, h, soft);
+        solve<false>(h, soft);
     }
-    restitution(contacts, config.restitution_threshold);
-    scatter(bodies);
+    restitution(config.restitution_threshold);
+    scatter(bodies, contacts);
 }
 
 // The bodies in contact get slots (solver_slots.hpp), each with its velocity change per
@@ -68,14 +68,14 @@ void soft_contact_solver::gather(std::span<body> bodies, std::span<contact> cont
     for (size_t s = 1; s < slots_.size(); ++s) increments_[s] = velocity_increment_of(bodies[slots_.body_of(s)], h);
 }
 
-// Effective masses and lever arms (anchors fixed at detection for the whole step), and each
-// point's relative normal velocity before the step's forces, which restitution reflects.
+// The contacts coloured and loaded into their groups (soft_lanes.hpp: lever arms, effective
+// masses, the warm start's impulses).
 void soft_contact_solver::prepare(std::span<contact> contacts) {
-    prepare_points(contacts, slots_,
-                   [](contact&, contact_point& p, const body_slot& a, const body_slot& b, const vec2& n) {
-                       p.bounce = normal_velocity(p, a, b, n);
-                       p.step_impulse = 0;
-                   });
+    colouring_.colour(contacts, slots_.size());
+    const std::span<const uint32_t> lanes = colouring_.lanes();
+    groups_.resize(colouring_.group_count());
+    for (size_t g = 0; g < groups_.size(); ++g)
+        load_group(groups_[g], lanes.subspan(g * wide_lanes, wide_lanes), contacts, slots_);
 }
 
 void soft_contact_solver::integrate_velocities() {
@@ -90,82 +90,155 @@ void soft_contact_solver::integrate_positions(real h) {
     }
 }
 
-// Every sub-step starts from the impulses the previous one (or the previous step) ended with:
-// they carry the stack's weight, so that the one solve pass only has to correct them.
-void soft_contact_solver::warm_start(std::span<contact> contacts) {
-    for (contact& c : contacts) {
-        for (int k = 0; k < c.count; ++k) c.points[k].step_impulse += c.points[k].normal_impulse;
-        apply_accumulated(c, slots_[c.slot_a], slots_[c.slot_b]);
+namespace {
+
+// The relative velocity along (dx, dy) at a point, (vb − va)·d + ωb·arm_b − ωa·arm_a, from the
+// lever arms r × d.
+inline wide relative(const body_lanes& a, const body_lanes& b, wide dx, wide dy, wide arm_a, wide arm_b) {
+    return (b.vx - a.vx) * dx + (b.vy - a.vy) * dy + b.w * arm_b - a.w * arm_a;
+}
+
+// An impulse λ along (dx, dy), pushing b and pulling a.
+inline void apply(const contact_lanes& g, body_lanes& a, body_lanes& b, wide dx, wide dy, wide lambda, wide arm_a,
+                  wide arm_b) {
+    const wide px = dx * lambda, py = dy * lambda;
+    a.vx -= px * g.inv_mass_a;
+    a.vy -= py * g.inv_mass_a;
+    a.w -= g.inv_inertia_a * (arm_a * lambda);
+    b.vx += px * g.inv_mass_b;
+    b.vy += py * g.inv_mass_b;
+    b.w += g.inv_inertia_b * (arm_b * lambda);
+}
+
+// The point's separation now: at detection, plus how its two bodies moved and turned since
+// (cross(ω, r) = (−ω·r.y, ω·r.x), to first order in the angle).
+inline wide current_separation(const point_lanes& p, const contact_lanes& g, const body_lanes& a, const body_lanes& b) {
+    const wide shift_x = (b.dpx - a.dpx) + (-b.da * p.anchor_by) - (-a.da * p.anchor_ay);
+    const wide shift_y = (b.dpy - a.dpy) + b.da * p.anchor_bx - a.da * p.anchor_ax;
+    return p.separation + (shift_x * g.nx + shift_y * g.ny);
+}
+
+// Coulomb friction at each point, within μ × its current normal impulse. The tangent is the
+// normal turned a quarter clockwise, (ny, −nx).
+inline void solve_friction(contact_lanes& g, body_lanes& a, body_lanes& b) {
+    const wide tx = g.ny, ty = -g.nx;
+    for (point_lanes& p : g.points) {
+        const wide vt = relative(a, b, tx, ty, p.rt_a, p.rt_b);
+        const wide limit = g.friction * p.normal_impulse;
+        const wide total = clamp(p.tangent_impulse - p.tangent_mass * vt, -limit, limit);
+        const wide lambda = total - p.tangent_impulse;
+        p.tangent_impulse = total;
+        apply(g, a, b, tx, ty, lambda, p.rt_a, p.rt_b);
     }
 }
 
-// One pass over the contacts: the normal first (it bounds friction), then friction. With Push,
+// The velocities of `after` in the lanes of `mask`, the others' bit for bit as they were.
+inline void keep_unless(wide_mask mask, body_lanes& bodies, const body_lanes& after) {
+    bodies.vx = select(mask, after.vx, bodies.vx);
+    bodies.vy = select(mask, after.vy, bodies.vy);
+    bodies.w = select(mask, after.w, bodies.w);
+}
+
+}  // namespace
+
+// Every sub-step starts from the impulses the previous one (or the previous step) ended with:
+// they carry the stack's weight, so that the solve passes only have to correct them.
+void soft_contact_solver::warm_start() {
+    for (contact_lanes& g : groups_) {
+        body_lanes a = gather_bodies(slots_, g.slot_a);
+        body_lanes b = gather_bodies(slots_, g.slot_b);
+        const wide tx = g.ny, ty = -g.nx;
+        for (point_lanes& p : g.points) {
+            p.step_impulse += p.normal_impulse;
+            const wide px = g.nx * p.normal_impulse + tx * p.tangent_impulse;
+            const wide py = g.ny * p.normal_impulse + ty * p.tangent_impulse;
+            a.vx -= px * g.inv_mass_a;
+            a.vy -= py * g.inv_mass_a;
+            a.w -= g.inv_inertia_a * (p.rn_a * p.normal_impulse + p.rt_a * p.tangent_impulse);
+            b.vx += px * g.inv_mass_b;
+            b.vy += py * g.inv_mass_b;
+            b.w += g.inv_inertia_b * (p.rn_b * p.normal_impulse + p.rt_b * p.tangent_impulse);
+        }
+        scatter_velocities(slots_, g.slot_a, a);
+        scatter_velocities(slots_, g.slot_b, b);
+    }
+}
+
+// One pass over the groups: the normal first (it bounds friction), then friction. With Push,
 // an overlap is pushed apart through the spring `soft`; without, the contact is only kept from
 // closing (the relax pass: mass scale 1, nothing taken back). A gap may close within the
-// sub-step either way: the speculative target is separation/h.
+// sub-step either way: the speculative target is separation/h. Selects rather than branches,
+// lane by lane: resting contacts hover about zero separation.
 template <bool Push>
-void soft_contact_solver::solve(std::span<contact> contacts, real h, const softness& soft) {
-    const real inv_h = 1.0f / h;
-    const real spring_rate = soft.mass_scale * soft.bias_rate;  // 1/s
-    for (contact& c : contacts) {
-        body_slot& sa = slots_[c.slot_a];
-        body_slot& sb = slots_[c.slot_b];
-        contact_pair pair(sa, sb);
-        const vec2 n = c.normal;
-        const vec2 moved = sb.dp - sa.dp;
-        for (int k = 0; k < c.count; ++k) {
-            contact_point& p = c.points[k];
-            const vec2 shift = moved + cross(sb.da, p.anchor_b) - cross(sa.da, p.anchor_a);
-            const real separation = p.separation + shift.dot(n);
-            // Selects rather than branches: resting contacts hover about zero separation, and
-            // which side a point is on is a coin toss the branch predictor lost.
-            const bool gap = separation > 0;
-            const real vn = pair.relative(n, p.rn_a, p.rn_b);
-            real change;
+void soft_contact_solver::solve(real h, const softness& soft) {
+    const wide inv_h = splat(1.0f / h);
+    const wide spring_rate = splat(soft.mass_scale * soft.bias_rate);  // 1/s
+    const wide zero = splat(0.0f), one = splat(1.0f);
+    const wide max_push = splat(-max_push_speed);
+    const wide mass_scale = splat(soft.mass_scale), impulse_scale = splat(soft.impulse_scale);
+    for (contact_lanes& g : groups_) {
+        body_lanes a = gather_bodies(slots_, g.slot_a);
+        body_lanes b = gather_bodies(slots_, g.slot_b);
+        for (point_lanes& p : g.points) {
+            const wide separation = current_separation(p, g, a, b);
+            const wide_mask gap = separation > zero;
+            const wide vn = relative(a, b, g.nx, g.ny, p.rn_a, p.rn_b);
+            wide change;
             if constexpr (Push) {
-                const real spring = std::max(spring_rate * separation, -max_push_speed);
-                const real bias = gap ? separation * inv_h : spring;
-                const real mass_scale = gap ? 1.0f : soft.mass_scale;
-                const real impulse_scale = gap ? 0.0f : soft.impulse_scale;
-                change = -p.normal_mass * (mass_scale * vn + bias) - impulse_scale * p.normal_impulse;
+                const wide spring = max(spring_rate * separation, max_push);
+                const wide bias = select(gap, separation * inv_h, spring);
+                const wide scale = select(gap, one, mass_scale);
+                const wide take_back = select(gap, zero, impulse_scale);
+                change = -p.normal_mass * (scale * vn + bias) - take_back * p.normal_impulse;
             } else {
-                change = -p.normal_mass * (vn + (gap ? separation * inv_h : 0.0f));
+                change = -p.normal_mass * (vn + select(gap, separation * inv_h, zero));
             }
-            const real total = std::max(p.normal_impulse + change, 0.0f);
-            const real lambda = total - p.normal_impulse;
+            const wide total = max(p.normal_impulse + change, zero);
+            const wide lambda = total - p.normal_impulse;
             p.normal_impulse = total;
             p.step_impulse += lambda;
-            pair.apply(n, lambda, p.rn_a, p.rn_b);
+            apply(g, a, b, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
         }
-        if (c.friction > 0) solve_friction(c, pair, tangent_of(n));
-        pair.store(sa, sb);
+        solve_friction(g, a, b);
+        scatter_velocities(slots_, g.slot_a, a);
+        scatter_velocities(slots_, g.slot_b, b);
     }
 }
 
 // A point that approached faster than the threshold at the step's start and was pushed during
 // it leaves at e times that speed. Points the solver never pushed (a speculative contact that
-// stayed apart) are left alone.
-void soft_contact_solver::restitution(std::span<contact> contacts, real threshold) {
-    for (contact& c : contacts) {
-        if (c.restitution == 0) continue;
-        body_slot& sa = slots_[c.slot_a];
-        body_slot& sb = slots_[c.slot_b];
-        contact_pair pair(sa, sb);
-        for (int k = 0; k < c.count; ++k) {
-            contact_point& p = c.points[k];
-            if (p.bounce > -threshold || p.step_impulse == 0) continue;
-            const real vn = pair.relative(c.normal, p.rn_a, p.rn_b);
-            const real total = std::max(p.normal_impulse - p.normal_mass * (vn + c.restitution * p.bounce), 0.0f);
-            const real lambda = total - p.normal_impulse;
-            p.normal_impulse = total;
-            p.step_impulse += lambda;
-            pair.apply(c.normal, lambda, p.rn_a, p.rn_b);
+// stayed apart), and contacts without restitution, are left alone: their lanes keep their
+// velocities and impulses bit for bit.
+void soft_contact_solver::restitution(real threshold) {
+    const wide zero = splat(0.0f), slower = splat(-threshold);
+    for (contact_lanes& g : groups_) {
+        const wide_mask bouncy = g.restitution != zero;
+        bool any = false;
+        for (size_t i = 0; i < wide_lanes; ++i) any |= bouncy[i] != 0;
+        if (!any) continue;
+        body_lanes a = gather_bodies(slots_, g.slot_a);
+        body_lanes b = gather_bodies(slots_, g.slot_b);
+        for (point_lanes& p : g.points) {
+            const wide_mask bounces = bouncy & (p.bounce <= slower) & (p.step_impulse != zero);
+            const wide vn = relative(a, b, g.nx, g.ny, p.rn_a, p.rn_b);
+            const wide total = max(p.normal_impulse - p.normal_mass * (vn + g.restitution * p.bounce), zero);
+            const wide lambda = total - p.normal_impulse;
+            body_lanes a_after = a, b_after = b;
+            apply(g, a_after, b_after, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
+            p.normal_impulse = select(bounces, total, p.normal_impulse);
+            p.step_impulse = select(bounces, p.step_impulse + lambda, p.step_impulse);
+            keep_unless(bounces, a, a_after);
+            keep_unless(bounces, b, b_after);
         }
-        pair.store(sa, sb);
+        scatter_velocities(slots_, g.slot_a, a);
+        scatter_velocities(slots_, g.slot_b, b);
     }
 }
 
-void soft_contact_solver::scatter(std::span<body> bodies) {
+void soft_contact_solver::scatter(std::span<body> bodies, std::span<contact> contacts) {
+    const std::span<const uint32_t> lanes = colouring_.lanes();
+    for (size_t g = 0; g < groups_.size(); ++g)
+        store_group(groups_[g], lanes.subspan(g * wide_lanes, wide_lanes), contacts);
     for (size_t s = 1; s < slots_.size(); ++s) {
         body& b = bodies[slots_.body_of(s)];
         b.velocity = slots_[s].v;

@@ -26,15 +26,20 @@
 // stopped the shear but not the sinking. Both together: 0.2 m down, 2 cm sideways.
 //
 // Like solver.hpp it works on 32-byte slots of the bodies in contact (solver_slots.hpp); bodies
-// in no contact are integrated in the same sub-steps on their own.
+// in no contact are integrated in the same sub-steps on their own. Unlike it, the contacts are
+// coloured (contact_colouring.hpp) and solved wide_lanes at a time (soft_lanes.hpp): the
+// passes go colour by colour, so a contact sees the impulses of the colours before it in the
+// same pass, as Box2D v3's solver does.
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "server/world/body.hpp"
 #include "server/world/config.hpp"
+#include "server/world/contact_colouring.hpp"
 #include "server/world/contacts.hpp"
 #include "server/world/integrate.hpp"
+#include "server/world/soft_lanes.hpp"
 #include "server/world/solver_slots.hpp"
 
 namespace arena::world {
@@ -59,14 +64,16 @@ private:
     void prepare(std::span<contact> contacts);
     void integrate_velocities();
     void integrate_positions(real h);
-    void warm_start(std::span<contact> contacts);
+    void warm_start();
     template <bool Push>
-    void solve(std::span<contact> contacts, real h, const softness& soft);
-    void restitution(std::span<contact> contacts, real threshold);
-    void scatter(std::span<body> bodies);
+    void solve(real h, const softness& soft);
+    void restitution(real threshold);
+    void scatter(std::span<body> bodies, std::span<contact> contacts);
 
     solver_slots slots_;
     std::vector<velocity_increment> increments_;  // slot → its velocity change per sub-step
+    contact_colouring colouring_;
+    std::vector<contact_lanes> groups_;  // the contacts in colour order, wide_lanes a group
 };
 
 }  // namespace arena::world

@@ -1,8 +1,8 @@
 #pragma once
 // Which recordings of older physics this build still replays bit for bit. A version bump
-// changes what some worlds do, not always every world: version 3 changed only chains, so a
-// version-2 recording of a world without one steps here exactly as it did when recorded, and
-// refusing it would lose a replayable file for nothing.
+// changes what some worlds do, not always every world: version 3 changed only chains and
+// version 4 only sub-stepped worlds, so a version-2 recording of a world with neither steps here
+// exactly as it did when recorded, and refusing it would lose a replayable file for nothing.
 #include <cstdint>
 #include <string>
 

@@ -25,7 +25,8 @@ namespace arena::world {
 // recordings still replay).
 // 2: shapes (capsules, polygons, segments), contact friction and rotation at contacts.
 // 3: a chain's segments know their neighbours (ghost vertices) and collide on one side.
-inline constexpr uint32_t world_version = 3;
+// 4: the sub-stepped solver (substeps > 1) solves its contacts colour by colour, several at once.
+inline constexpr uint32_t world_version = 4;
 
 class world {
 public:

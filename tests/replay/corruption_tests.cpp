@@ -199,8 +199,17 @@ TEST_CASE("malformed recordings are each refused with the offset and the reason"
             R"({"preset": "platformer", "bodies": [{"shape": {"type": "chain", "points": [[0, 1], [10, 1], [20, 3]]}}]})";
         encoder.append(other, bytes);
         expected = offset_text(file.path(), 0) +
-                   "recorded with world version 2, this build simulates world version 3, which changed what this "
+                   "recorded with world version 2, this build simulates world version 4, which changed what this "
                    "world uses: chains";
+    }
+    SECTION("a version-3 sub-stepped world, whose solver changed in version 4") {
+        header other = h;
+        other.world_version = 3;
+        other.world_config = R"({"preset": "pyramid", "substeps": 4})";
+        encoder.append(other, bytes);
+        expected = offset_text(file.path(), 0) +
+                   "recorded with world version 3, this build simulates world version 4, which changed what this "
+                   "world uses: sub-steps";
     }
     SECTION("a config that does not parse") {
         header other = h;

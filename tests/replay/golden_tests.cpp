@@ -31,15 +31,9 @@ std::vector<std::pair<uint32_t, uint64_t>> replay_hashes(const std::string& path
     return hashes;
 }
 
-}  // namespace
-
-TEST_CASE("the golden recording replays with every hash matching and the expected final hash", "[replay][golden]") {
-    auto opened = replayer::open(testing::golden_path());
-    REQUIRE(opened.ok());
-    CHECK(opened.value->file_header().preset == "asteroids");
-    // Recorded under world version 2; version 3 changed only chains, which it has none of.
-    CHECK(opened.value->file_header().world_version == 2);
-    const replay_report report = opened.value->run();
+// A recording of the scripted session (scripted_session.hpp) replays whole, every hash matching.
+void check_scripted_replay(replayer& replay, uint64_t final_hash) {
+    const replay_report report = replay.run();
     INFO(report.error);
     CHECK(report.error.empty());
     CHECK_FALSE(report.mismatch.has_value());
@@ -48,7 +42,19 @@ TEST_CASE("the golden recording replays with every hash matching and the expecte
     // The start hash, a Hash record every 60 ticks and the End record.
     CHECK(report.hashes_checked == 1 + golden_ticks / 60 + 1);
     CHECK(report.final_tick == golden_ticks);
-    CHECK(report.final_hash == golden_final_hash);
+    CHECK(report.final_hash == final_hash);
+}
+
+}  // namespace
+
+TEST_CASE("the golden recording replays with every hash matching and the expected final hash", "[replay][golden]") {
+    auto opened = replayer::open(testing::golden_path());
+    REQUIRE(opened.ok());
+    CHECK(opened.value->file_header().preset == "asteroids");
+    // Recorded under world version 2; versions 3 and 4 changed only chains and sub-steps, which it
+    // has none of.
+    CHECK(opened.value->file_header().world_version == 2);
+    check_scripted_replay(*opened.value, golden_final_hash);
 }
 
 TEST_CASE("replaying the same recording twice gives identical hashes at every tick", "[replay][golden]") {
@@ -104,6 +110,18 @@ TEST_CASE("the golden Asteroids match replays to the live scoreboard with every 
         CHECK(lines[i].shots == live[i].shots);
         CHECK(lines[i].hits == live[i].hits);
     }
+}
+
+// The same scripted session in the pyramid preset (tests/replay/make_golden.cpp): 210 boxes
+// stacked in 4 sub-steps, so the sub-stepped solver's colouring and its lanes are in every
+// hash; scripts/determinism-check.sh and the WebAssembly replay test replay it too.
+TEST_CASE("the golden sub-stepped pyramid replays with every hash matching", "[replay][golden]") {
+    auto opened = replayer::open(std::string(ARENA_TEST_DATA_DIR) + "/golden_pyramid.arpl");
+    REQUIRE(opened.ok());
+    CHECK(opened.value->file_header().preset == "pyramid");
+    CHECK(opened.value->file_header().world_version == 4);
+    CHECK(opened.value->state().config().substeps == 4);
+    check_scripted_replay(*opened.value, 0xabd3114e7d05216fULL);
 }
 
 TEST_CASE("a replay stopped at its `until` goes on from there: the same hashes as one run", "[replay][golden]") {

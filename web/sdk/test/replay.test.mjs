@@ -12,7 +12,7 @@ import { dist, fixtures, loadCore, sdk, sourceDir } from './helpers.mjs';
 
 const replayBinary = process.env.ARENA_REPLAY;
 
-for (const name of ['golden_asteroids.arpl', 'golden_asteroids_rules.arpl']) {
+for (const name of ['golden_asteroids.arpl', 'golden_asteroids_rules.arpl', 'golden_pyramid.arpl']) {
   test(`${name}: every per-tick hash of the WebAssembly world equals the native one`, async () => {
     const file = path.join(sourceDir, 'tests/data', name);
     const native = execFileSync(replayBinary, ['--dump-hashes', file], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
