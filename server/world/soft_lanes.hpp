@@ -20,29 +20,33 @@
 namespace arena::world {
 
 struct point_lanes {
-    wide anchor_ax, anchor_ay, anchor_bx, anchor_by;  // m, from each centre at detection
-    wide separation;                                  // m, at detection
-    wide rn_a, rn_b, rt_a, rt_b;                      // m, lever arms anchor × n and × t
-    wide normal_mass, tangent_mass;                   // kg
-    wide normal_impulse, tangent_impulse;             // N·s, accumulated
-    wide step_impulse;                                // N·s, the normal impulse over the step
-    wide bounce;                                      // m/s, relative normal velocity at the step's start
+    wide separation;                       // m, at detection
+    wide rn_a, rn_b, rt_a, rt_b;           // m, lever arms anchor × n and × t
+    wide normal_mass, tangent_mass;        // kg
+    wide normal_impulse, tangent_impulse;  // N·s, accumulated
+    wide step_impulse;                     // N·s, the normal impulse over the step
 };
 
 struct contact_lanes {
     uint32_t slot_a[wide_lanes];
     uint32_t slot_b[wide_lanes];
     wide nx, ny;  // the unit normal, a towards b
-    wide friction, restitution;
-    wide inv_mass_a, inv_mass_b, inv_inertia_a, inv_inertia_b;
+    wide friction;
     point_lanes points[2];
 };
 
-// One side's bodies of a group: velocities, and how far each moved and turned since detection.
-// `inv_mass` rides along so that the velocities go back as whole 16-byte rows.
+// What only the restitution pass after the sub-steps reads, apart from what every pass streams.
+struct bounce_lanes {
+    wide restitution;
+    wide approach[2];  // m/s, each point's relative normal velocity at the step's start
+};
+
+// One side's bodies of a group: velocities, masses, and how far each moved and turned since
+// detection. The masses come with the rows the velocities are in (they are not kept in the
+// group: a smaller group is less to stream per pass).
 struct body_lanes {
     wide vx, vy, w, inv_mass;
-    wide dpx, dpy, da;
+    wide inv_inertia, dpx, dpy, da;
 };
 
 // A body slot is two rows of four: (v.x, v.y, w, inv_mass) and (inv_inertia, dp.x, dp.y, da).
@@ -75,11 +79,10 @@ inline void transpose(wide r0, wide r1, wide r2, wide r3, wide& c0, wide& c1, wi
 inline body_lanes gather_bodies(const solver_slots& slots, const uint32_t (&slot)[wide_lanes]) {
     const body_slot &s0 = slots[slot[0]], &s1 = slots[slot[1]], &s2 = slots[slot[2]], &s3 = slots[slot[3]];
     body_lanes b;
-    wide inv_inertia;
     detail::transpose(detail::load_row(s0, 0), detail::load_row(s1, 0), detail::load_row(s2, 0),
                       detail::load_row(s3, 0), b.vx, b.vy, b.w, b.inv_mass);
     detail::transpose(detail::load_row(s0, 1), detail::load_row(s1, 1), detail::load_row(s2, 1),
-                      detail::load_row(s3, 1), inv_inertia, b.dpx, b.dpy, b.da);
+                      detail::load_row(s3, 1), b.inv_inertia, b.dpx, b.dpy, b.da);
     return b;
 }
 
@@ -97,9 +100,9 @@ inline void scatter_velocities(solver_slots& slots, const uint32_t (&slot)[wide_
 // Group `lanes` (wide_lanes contact indices) of `contacts` as rows, at the step's start: the
 // points' impulses of the previous step (the warm start), lever arms and effective masses (the
 // anchors are fixed at detection for the whole step), the relative normal velocity before the
-// step's forces (`bounce`, which restitution reflects), no impulse yet for the step.
-void load_group(contact_lanes& group, std::span<const uint32_t> lanes, std::span<const contact> contacts,
-                const solver_slots& slots);
+// step's forces (which restitution reflects, in `bounce`), no impulse yet for the step.
+void load_group(contact_lanes& group, bounce_lanes& bounce, std::span<const uint32_t> lanes,
+                std::span<const contact> contacts, const solver_slots& slots);
 // The rows' impulses (normal, tangent, the step's) back into the contacts they came from.
 void store_group(const contact_lanes& group, std::span<const uint32_t> lanes, std::span<contact> contacts);
 

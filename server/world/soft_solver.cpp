@@ -74,8 +74,9 @@ void soft_contact_solver::prepare(std::span<contact> contacts) {
     colouring_.colour(contacts, slots_.size());
     const std::span<const uint32_t> lanes = colouring_.lanes();
     groups_.resize(colouring_.group_count());
+    bounces_.resize(groups_.size());
     for (size_t g = 0; g < groups_.size(); ++g)
-        load_group(groups_[g], lanes.subspan(g * wide_lanes, wide_lanes), contacts, slots_);
+        load_group(groups_[g], bounces_[g], lanes.subspan(g * wide_lanes, wide_lanes), contacts, slots_);
 }
 
 void soft_contact_solver::integrate_velocities() {
@@ -99,23 +100,24 @@ inline wide relative(const body_lanes& a, const body_lanes& b, wide dx, wide dy,
 }
 
 // An impulse λ along (dx, dy), pushing b and pulling a.
-inline void apply(const contact_lanes& g, body_lanes& a, body_lanes& b, wide dx, wide dy, wide lambda, wide arm_a,
-                  wide arm_b) {
+inline void apply(body_lanes& a, body_lanes& b, wide dx, wide dy, wide lambda, wide arm_a, wide arm_b) {
     const wide px = dx * lambda, py = dy * lambda;
-    a.vx -= px * g.inv_mass_a;
-    a.vy -= py * g.inv_mass_a;
-    a.w -= g.inv_inertia_a * (arm_a * lambda);
-    b.vx += px * g.inv_mass_b;
-    b.vy += py * g.inv_mass_b;
-    b.w += g.inv_inertia_b * (arm_b * lambda);
+    a.vx -= px * a.inv_mass;
+    a.vy -= py * a.inv_mass;
+    a.w -= a.inv_inertia * (arm_a * lambda);
+    b.vx += px * b.inv_mass;
+    b.vy += py * b.inv_mass;
+    b.w += b.inv_inertia * (arm_b * lambda);
 }
 
 // The point's separation now: at detection, plus how its two bodies moved and turned since
-// (cross(ω, r) = (−ω·r.y, ω·r.x), to first order in the angle).
-inline wide current_separation(const point_lanes& p, const contact_lanes& g, const body_lanes& a, const body_lanes& b) {
-    const wide shift_x = (b.dpx - a.dpx) + (-b.da * p.anchor_by) - (-a.da * p.anchor_ay);
-    const wide shift_y = (b.dpy - a.dpy) + b.da * p.anchor_bx - a.da * p.anchor_ax;
-    return p.separation + (shift_x * g.nx + shift_y * g.ny);
+// along the normal, to first order in the angle: (Δpb − Δpa)·n + Δθb·(rb × n) − Δθa·(ra × n),
+// since (θ × r)·n = θ·(r × n). The first term is the contact's, shared by its points.
+inline wide moved_along_normal(const contact_lanes& g, const body_lanes& a, const body_lanes& b) {
+    return (b.dpx - a.dpx) * g.nx + (b.dpy - a.dpy) * g.ny;
+}
+inline wide current_separation(const point_lanes& p, wide moved, const body_lanes& a, const body_lanes& b) {
+    return p.separation + (moved + b.da * p.rn_b - a.da * p.rn_a);
 }
 
 // Coulomb friction at each point, within μ × its current normal impulse. The tangent is the
@@ -128,7 +130,7 @@ inline void solve_friction(contact_lanes& g, body_lanes& a, body_lanes& b) {
         const wide total = clamp(p.tangent_impulse - p.tangent_mass * vt, -limit, limit);
         const wide lambda = total - p.tangent_impulse;
         p.tangent_impulse = total;
-        apply(g, a, b, tx, ty, lambda, p.rt_a, p.rt_b);
+        apply(a, b, tx, ty, lambda, p.rt_a, p.rt_b);
     }
 }
 
@@ -152,12 +154,12 @@ void soft_contact_solver::warm_start() {
             p.step_impulse += p.normal_impulse;
             const wide px = g.nx * p.normal_impulse + tx * p.tangent_impulse;
             const wide py = g.ny * p.normal_impulse + ty * p.tangent_impulse;
-            a.vx -= px * g.inv_mass_a;
-            a.vy -= py * g.inv_mass_a;
-            a.w -= g.inv_inertia_a * (p.rn_a * p.normal_impulse + p.rt_a * p.tangent_impulse);
-            b.vx += px * g.inv_mass_b;
-            b.vy += py * g.inv_mass_b;
-            b.w += g.inv_inertia_b * (p.rn_b * p.normal_impulse + p.rt_b * p.tangent_impulse);
+            a.vx -= px * a.inv_mass;
+            a.vy -= py * a.inv_mass;
+            a.w -= a.inv_inertia * (p.rn_a * p.normal_impulse + p.rt_a * p.tangent_impulse);
+            b.vx += px * b.inv_mass;
+            b.vy += py * b.inv_mass;
+            b.w += b.inv_inertia * (p.rn_b * p.normal_impulse + p.rt_b * p.tangent_impulse);
         }
         scatter_velocities(slots_, g.slot_a, a);
         scatter_velocities(slots_, g.slot_b, b);
@@ -179,8 +181,9 @@ void soft_contact_solver::solve(real h, const softness& soft) {
     for (contact_lanes& g : groups_) {
         body_lanes a = gather_bodies(slots_, g.slot_a);
         body_lanes b = gather_bodies(slots_, g.slot_b);
+        const wide moved = moved_along_normal(g, a, b);
         for (point_lanes& p : g.points) {
-            const wide separation = current_separation(p, g, a, b);
+            const wide separation = current_separation(p, moved, a, b);
             const wide_mask gap = separation > zero;
             const wide vn = relative(a, b, g.nx, g.ny, p.rn_a, p.rn_b);
             wide change;
@@ -197,7 +200,7 @@ void soft_contact_solver::solve(real h, const softness& soft) {
             const wide lambda = total - p.normal_impulse;
             p.normal_impulse = total;
             p.step_impulse += lambda;
-            apply(g, a, b, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
+            apply(a, b, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
         }
         solve_friction(g, a, b);
         scatter_velocities(slots_, g.slot_a, a);
@@ -211,20 +214,24 @@ void soft_contact_solver::solve(real h, const softness& soft) {
 // velocities and impulses bit for bit.
 void soft_contact_solver::restitution(real threshold) {
     const wide zero = splat(0.0f), slower = splat(-threshold);
-    for (contact_lanes& g : groups_) {
-        const wide_mask bouncy = g.restitution != zero;
+    for (size_t group = 0; group < groups_.size(); ++group) {
+        contact_lanes& g = groups_[group];
+        const bounce_lanes& bounce = bounces_[group];
+        const wide_mask bouncy = bounce.restitution != zero;
         bool any = false;
         for (size_t i = 0; i < wide_lanes; ++i) any |= bouncy[i] != 0;
         if (!any) continue;
         body_lanes a = gather_bodies(slots_, g.slot_a);
         body_lanes b = gather_bodies(slots_, g.slot_b);
-        for (point_lanes& p : g.points) {
-            const wide_mask bounces = bouncy & (p.bounce <= slower) & (p.step_impulse != zero);
+        for (int k = 0; k < 2; ++k) {
+            point_lanes& p = g.points[k];
+            const wide approach = bounce.approach[k];
+            const wide_mask bounces = bouncy & (approach <= slower) & (p.step_impulse != zero);
             const wide vn = relative(a, b, g.nx, g.ny, p.rn_a, p.rn_b);
-            const wide total = max(p.normal_impulse - p.normal_mass * (vn + g.restitution * p.bounce), zero);
+            const wide total = max(p.normal_impulse - p.normal_mass * (vn + bounce.restitution * approach), zero);
             const wide lambda = total - p.normal_impulse;
             body_lanes a_after = a, b_after = b;
-            apply(g, a_after, b_after, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
+            apply(a_after, b_after, g.nx, g.ny, lambda, p.rn_a, p.rn_b);
             p.normal_impulse = select(bounces, total, p.normal_impulse);
             p.step_impulse = select(bounces, p.step_impulse + lambda, p.step_impulse);
             keep_unless(bounces, a, a_after);

@@ -74,6 +74,7 @@ private:
     std::vector<velocity_increment> increments_;  // slot → its velocity change per sub-step
     contact_colouring colouring_;
     std::vector<contact_lanes> groups_;  // the contacts in colour order, wide_lanes a group
+    std::vector<bounce_lanes> bounces_;  // group g's restitution
 };
 
 }  // namespace arena::world
