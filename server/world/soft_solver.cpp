@@ -95,8 +95,10 @@ namespace {
 
 // The relative velocity along (dx, dy) at a point, (vb − va)·d + ωb·arm_b − ωa·arm_a, from the
 // lever arms r × d.
+// Summed as two halves, linear and angular: the passes are chains of one point's impulse
+// feeding the next point's velocity, and the pair is a shorter chain than four terms in a row.
 inline wide relative(const body_lanes& a, const body_lanes& b, wide dx, wide dy, wide arm_a, wide arm_b) {
-    return (b.vx - a.vx) * dx + (b.vy - a.vy) * dy + b.w * arm_b - a.w * arm_a;
+    return ((b.vx - a.vx) * dx + (b.vy - a.vy) * dy) + (b.w * arm_b - a.w * arm_a);
 }
 
 // An impulse λ along (dx, dy), pushing b and pulling a.
