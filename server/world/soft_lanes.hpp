@@ -6,9 +6,9 @@
 // A group is loaded from the contacts once per step (load_group), which computes the points'
 // lever arms and effective masses lane by lane; the sub-steps then work on the groups alone,
 // and the impulses go back to the contacts once at the end (store_group) for warm starting and
-// the events. An empty
-// lane (contact_colouring::no_contact) or a contact's missing second point is all zeros: no
-// mass, no impulse, so solving it moves nothing, and its bodies are slot 0 (static).
+// the events. An empty lane (contact_colouring::no_contact) or a contact's missing second point
+// is all zeros: no mass, no impulse, so solving it moves nothing, and its bodies are slot 0
+// (static).
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -27,6 +27,8 @@ struct point_lanes {
     wide step_impulse;                     // N·s, the normal impulse over the step
 };
 
+// 400 bytes with four lanes: every pass streams the groups, so what only one pass reads lives
+// elsewhere (bounce_lanes).
 struct contact_lanes {
     uint32_t slot_a[wide_lanes];
     uint32_t slot_b[wide_lanes];

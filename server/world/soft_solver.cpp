@@ -93,10 +93,10 @@ void soft_contact_solver::integrate_positions(real h) {
 
 namespace {
 
-// The relative velocity along (dx, dy) at a point, (vb − va)·d + ωb·arm_b − ωa·arm_a, from the
-// lever arms r × d.
-// Summed as two halves, linear and angular: the passes are chains of one point's impulse
-// feeding the next point's velocity, and the pair is a shorter chain than four terms in a row.
+// The relative velocity along (dx, dy) at a point, (vb − va)·d + (ωb·arm_b − ωa·arm_a), from
+// the lever arms r × d. Summed as two halves, linear and angular: a pass is a chain of one
+// point's impulse feeding the next point's velocity, and two halves are a shorter chain than
+// four terms in a row.
 inline wide relative(const body_lanes& a, const body_lanes& b, wide dx, wide dy, wide arm_a, wide arm_b) {
     return ((b.vx - a.vx) * dx + (b.vy - a.vy) * dy) + (b.w * arm_b - a.w * arm_a);
 }

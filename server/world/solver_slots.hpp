@@ -1,8 +1,9 @@
 #pragma once
-// What both contact solvers (solver.hpp, one step; soft_solver.hpp, sub-steps) share: the
-// compact copy of the bodies in contact they iterate over, a point's effective masses, and the
-// impulse rows. Inline where the solvers' inner loops call them, so that a contact's two
-// velocities stay in registers.
+// The compact copy of the bodies in contact that both contact solvers (solver.hpp, one step;
+// soft_solver.hpp, sub-steps) iterate over; then the one-step solver's point masses and impulse
+// rows (the sub-stepped solver has its own, four contacts at a time: soft_lanes.hpp). Inline
+// where the solver's inner loops call them, so that a contact's two velocities stay in
+// registers.
 #include <algorithm>
 #include <cstdint>
 #include <span>
