@@ -47,14 +47,15 @@ void radix_sort_by_cell(broadphase_scratch& s, uint32_t max_cell) {
     }
 }
 
-// The proxy of body i: its bounding box and circle. A body with a shape gets its rotation
-// computed here, once a step, and kept for the narrow phase. Without the shapes (the view
-// index), every body is its bounding circle.
+// The proxy of body i: its bounding box and circle. A body with a shape gets its rotation and
+// its turned shape computed here, once a step, and kept for the narrow phase. Without the
+// shapes (the view index), every body is its bounding circle.
 inline cell_proxy make_proxy(const body& b, uint32_t i, broadphase_scratch& s, const proxy_source& source) {
     if (b.shape == no_shape || source.pool.empty()) return {b.position, vec2{b.radius, b.radius}, b.radius, i};
     const cos_sin r = compute_cos_sin(b.angle);
     s.rotations[i] = r;
-    const aabb box = compute_aabb(source.pool[b.shape], b.position, r.c, r.s);
+    s.turned[i] = turn(source.pool[b.shape], r.c, r.s);
+    const aabb box = compute_aabb(s.turned[i], b.position);
     return {(box.lo + box.hi) * 0.5f, (box.hi - box.lo) * 0.5f, -b.radius, i};
 }
 
@@ -70,7 +71,10 @@ void bucket_by_cell(std::span<const body> bodies, const grid& g, broadphase_scra
     const uint64_t cells = g.cell_count();
     s.items.resize(bodies.size());
     s.unsorted.resize(bodies.size());
-    if (!source.pool.empty()) s.rotations.resize(bodies.size());
+    if (!source.pool.empty()) {
+        s.rotations.resize(bodies.size());
+        s.turned.resize(bodies.size());
+    }
     uint32_t max_cell = 0;
     size_t n = 0;
     for (size_t i = 0; i < bodies.size(); ++i) {
@@ -117,7 +121,10 @@ namespace detail {
 void proxies_in_index_order(std::span<const body> bodies, broadphase_scratch& s, const proxy_source& source) {
     s.proxies.clear();
     s.unsorted.resize(bodies.size());
-    if (!source.pool.empty()) s.rotations.resize(bodies.size());
+    if (!source.pool.empty()) {
+        s.rotations.resize(bodies.size());
+        s.turned.resize(bodies.size());
+    }
     for (size_t i = 0; i < bodies.size(); ++i) {
         s.unsorted[i] = make_proxy(bodies[i], static_cast<uint32_t>(i), s, source);
         if (!(source.dynamic_only && bodies[i].is_static())) s.proxies.push_back(s.unsorted[i]);

@@ -43,6 +43,7 @@ struct broadphase_scratch {
                                                        // when the grid has too many cells for a table
     std::vector<std::pair<uint32_t, uint32_t>> pairs;  // candidate (a, b) indices, a < b
     std::vector<cos_sin> rotations;                    // body index → rotation, for bodies with a shape
+    std::vector<turned_shape> turned;                  // body index → its shape turned, for the same
     phase_laps* laps = nullptr;                        // world::step's stopwatch, while it runs
 };
 

@@ -75,6 +75,11 @@ transform transform_of(const body& b, uint32_t index, const vec2& position, cons
     return {position, r.c, r.s};
 }
 
+// A body whose shape has edges (2 to 8 vertices), turned by the broadphase this step.
+bool is_hull(const cell_proxy& p, const broadphase_scratch& s) {
+    return !p.is_circle() && s.turned[p.index].count > 1;
+}
+
 aabb box_of(const cell_proxy& p, real margin) {
     const vec2 reach = p.half + vec2{margin, margin};
     return {p.position - reach, p.position + reach};
@@ -120,6 +125,8 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
                                 manifold m;
                                 if (p.is_circle() && q.is_circle()) {
                                     m = collide_circles(a.position, a.radius, pb, b.radius, spec);
+                                } else if (is_hull(p, scratch) && is_hull(q, scratch)) {
+                                    m = collide_hulls(scratch.turned[ia], a.position, scratch.turned[ib], pb, spec);
                                 } else {
                                     shape circle_a, circle_b;
                                     m = collide(
@@ -212,8 +219,8 @@ uint64_t mix(uint64_t key) {
 
 }  // namespace
 
-const impulse_cache::entry* impulse_cache::find(uint64_t key) const {
-    if (table_.empty()) return nullptr;
+const impulse_cache::entry* impulse_cache::find(uint64_t key) {
+    if (table_.empty()) build_table();
     const size_t mask = table_.size() - 1;
     for (size_t at = mix(key) & mask;; at = (at + 1) & mask) {
         const uint32_t k = table_[at];
@@ -222,9 +229,33 @@ const impulse_cache::entry* impulse_cache::find(uint64_t key) const {
     }
 }
 
-void impulse_cache::load(std::span<const body> bodies, std::span<contact> contacts) const {
+// Keys are unique (one contact per pair or body and wall): each finds its own entry.
+void impulse_cache::build_table() {
+    size_t size = 16;
+    while (size < 2 * entries_.size()) size *= 2;
+    table_.assign(size, 0);
+    const size_t mask = size - 1;
+    for (uint32_t k = 0; k < entries_.size(); ++k) {
+        size_t at = mix(entries_[k].key) & mask;
+        while (table_[at] != 0) at = (at + 1) & mask;
+        table_[at] = k + 1;
+    }
+}
+
+// Contacts come in the broadphase's order, which changes little from one step to the next: the
+// entry after the last one found is tried first, and the table is built only when that fails.
+// Either way a contact gets the entry of its key, so the walk changes no result.
+void impulse_cache::load(std::span<const body> bodies, std::span<contact> contacts) {
+    size_t next = 0;
     for (contact& c : contacts) {
-        const entry* e = find(contact_key(bodies, c));
+        const uint64_t key = contact_key(bodies, c);
+        const entry* e = nullptr;
+        if (next < entries_.size() && entries_[next].key == key) {
+            e = &entries_[next];
+        } else {
+            e = find(key);
+        }
+        if (e) next = static_cast<size_t>(e - entries_.data()) + 1;
         for (int k = 0; k < c.count; ++k) {
             contact_point& p = c.points[k];
             p.normal_impulse = 0;
@@ -239,29 +270,20 @@ void impulse_cache::load(std::span<const body> bodies, std::span<contact> contac
     }
 }
 
+// Every contact, even one without impulses: the next step's walk then finds its successor in
+// place.
 void impulse_cache::store(std::span<const body> bodies, std::span<const contact> contacts) {
     entries_.clear();
     for (const contact& c : contacts) {
         entry e{contact_key(bodies, c), {0, 0}, c.count, {0, 0}, {0, 0}};
-        bool any = false;
         for (int k = 0; k < c.count; ++k) {
             e.id[k] = c.points[k].id;
             e.normal[k] = c.points[k].normal_impulse;
             e.tangent[k] = c.points[k].tangent_impulse;
-            any = any || e.normal[k] != 0 || e.tangent[k] != 0;
         }
-        if (any) entries_.push_back(e);
+        entries_.push_back(e);
     }
-    // Keys are unique (one contact per pair or body and wall): each finds its own entry.
-    size_t size = 16;
-    while (size < 2 * entries_.size()) size *= 2;
-    table_.assign(size, 0);
-    const size_t mask = size - 1;
-    for (uint32_t k = 0; k < entries_.size(); ++k) {
-        size_t at = mix(entries_[k].key) & mask;
-        while (table_[at] != 0) at = (at + 1) & mask;
-        table_[at] = k + 1;
-    }
+    table_.clear();
 }
 
 }  // namespace arena::world

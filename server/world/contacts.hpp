@@ -71,7 +71,7 @@ void detect_contacts(std::span<const body> bodies, const world_config& config, b
 class impulse_cache {
 public:
     // Sets each point's impulses to those it had last step (0 if new).
-    void load(std::span<const body> bodies, std::span<contact> contacts) const;
+    void load(std::span<const body> bodies, std::span<contact> contacts);
     void store(std::span<const body> bodies, std::span<const contact> contacts);
 
 private:
@@ -83,12 +83,14 @@ private:
         real tangent[2];
     };
     // The entry of `key`, or nullptr.
-    const entry* find(uint64_t key) const;
+    const entry* find(uint64_t key);
+    void build_table();
 
     std::vector<entry> entries_;  // in contact order
     // Open addressing over entries_ (entry number + 1, 0 = empty), a power of two at least twice
-    // as large. Only looked up, never iterated, so its order cannot leak into the results; it
-    // replaced a sort of the entries, a tenth of a pyramid's step.
+    // as large; empty until a lookup needs it. Only looked up, never iterated, so its order
+    // cannot leak into the results; it replaced a sort of the entries, a tenth of a pyramid's
+    // step.
     std::vector<uint32_t> table_;
 };
 

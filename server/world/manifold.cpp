@@ -11,22 +11,21 @@ namespace {
 // a resting box does not switch faces between steps (Box2D's 0.1 × linear slop).
 constexpr real axis_tolerance = 0.0005f;
 
-// A hull in world coordinates.
+// A hull in world coordinates: a turned shape's vertices placed at p, its normals as they are
+// (the turned shape outlives the hull).
 struct world_hull {
     vec2 v[max_polygon_vertices];
-    vec2 n[max_polygon_vertices];
+    const vec2* n = nullptr;
     int count = 0;
     real radius = 0;
 };
 
-world_hull to_world(const shape& s, const transform& x) {
+world_hull place(const turned_shape& t, const vec2& p) {
     world_hull h;
-    h.count = s.count;
-    h.radius = s.radius;
-    for (int i = 0; i < s.count; ++i) {
-        h.v[i] = x.apply(s.vertices[i]);
-        h.n[i] = x.rotate(s.normals[i]);
-    }
+    h.count = t.count;
+    h.radius = t.radius;
+    h.n = t.normals.data();
+    for (int i = 0; i < t.count; ++i) h.v[i] = t.vertices[i] + p;
     return h;
 }
 
@@ -154,7 +153,8 @@ manifold collide_circles(const vec2& ca, real ra, const vec2& cb, real rb, real 
 
 manifold collide_hull_circle(const shape& a, const transform& xa, const vec2& centre, real radius, real speculative) {
     manifold m;
-    const world_hull h = to_world(a, xa);
+    const turned_shape turned = turn(a, xa.c, xa.s);
+    const world_hull h = place(turned, xa.p);
     int edge = 0;
     real best = -3.4e38f;
     for (int i = 0; i < h.count; ++i) {
@@ -187,9 +187,13 @@ manifold collide_hull_circle(const shape& a, const transform& xa, const vec2& ce
 }
 
 manifold collide_hulls(const shape& a, const transform& xa, const shape& b, const transform& xb, real speculative) {
+    return collide_hulls(turn(a, xa.c, xa.s), xa.p, turn(b, xb.c, xb.s), xb.p, speculative);
+}
+
+manifold collide_hulls(const turned_shape& a, const vec2& pa, const turned_shape& b, const vec2& pb, real speculative) {
     manifold m;
-    const world_hull ha = to_world(a, xa);
-    const world_hull hb = to_world(b, xb);
+    const world_hull ha = place(a, pa);
+    const world_hull hb = place(b, pb);
     const real radius = ha.radius + hb.radius;
     int edge_a = 0, edge_b = 0;
     const real sep_a = max_separation(ha, hb, edge_a);
@@ -236,8 +240,9 @@ manifold collide_hulls(const shape& a, const transform& xa, const shape& b, cons
 
 manifold collide_on_edge(const shape& a, const transform& xa, const shape& b, const transform& xb, int edge,
                          real speculative) {
-    const world_hull ha = to_world(a, xa);
-    const world_hull hb = to_world(b, xb);
+    const turned_shape ta = turn(a, xa.c, xa.s), tb = turn(b, xb.c, xb.s);
+    const world_hull ha = place(ta, xa.p);
+    const world_hull hb = place(tb, xb.p);
     return clip_to_reference(hb, edge, ha, incident_edge(ha, hb.n[edge]), true, speculative);
 }
 

@@ -54,5 +54,7 @@ manifold collide_on_edge(const shape& a, const transform& xa, const shape& b, co
 manifold collide_circles(const vec2& ca, real ra, const vec2& cb, real rb, real speculative);
 manifold collide_hull_circle(const shape& a, const transform& xa, const vec2& centre, real radius, real speculative);
 manifold collide_hulls(const shape& a, const transform& xa, const shape& b, const transform& xb, real speculative);
+// The same, for shapes already turned (turned_shape, shape.hpp) with their bodies at pa and pb.
+manifold collide_hulls(const turned_shape& a, const vec2& pa, const turned_shape& b, const vec2& pb, real speculative);
 
 }  // namespace arena::world

@@ -201,10 +201,26 @@ real bounding_radius(const shape& s) {
 }
 
 aabb compute_aabb(const shape& sh, const vec2& position, real c, real s) {
-    aabb box;
+    return compute_aabb(turn(sh, c, s), position);
+}
+
+turned_shape turn(const shape& sh, real c, real s) {
+    turned_shape t;
+    t.count = sh.count;
+    t.radius = sh.radius;
     for (int i = 0; i < sh.count; ++i) {
         const vec2& v = sh.vertices[i];
-        const vec2 w{c * v.x() - s * v.y() + position.x(), s * v.x() + c * v.y() + position.y()};
+        const vec2& n = sh.normals[i];
+        t.vertices[i] = {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+        t.normals[i] = {c * n.x() - s * n.y(), s * n.x() + c * n.y()};
+    }
+    return t;
+}
+
+aabb compute_aabb(const turned_shape& sh, const vec2& position) {
+    aabb box;
+    for (int i = 0; i < sh.count; ++i) {
+        const vec2 w = sh.vertices[i] + position;
         if (i == 0) {
             box.lo = box.hi = w;
         } else {

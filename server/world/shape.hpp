@@ -98,4 +98,19 @@ struct aabb {
 // The shape's box with the body at `position`, turned by (c, s).
 aabb compute_aabb(const shape& sh, const vec2& position, real c, real s);
 
+// A shape turned by (c, s), not yet placed: its vertices and normals in world directions. The
+// broadphase turns each body's shape once a step; a pair in the narrow phase then only adds
+// the two positions. Turning then adding is the very arithmetic of turning and placing in one
+// go ((c·x − s·y) + p), so both give the same bits.
+struct turned_shape {
+    std::array<vec2, max_polygon_vertices> vertices;  // m, only the first `count` are set
+    std::array<vec2, max_polygon_vertices> normals;
+    int count = 0;
+    real radius = 0;
+};
+
+turned_shape turn(const shape& sh, real c, real s);
+// The turned shape's box with the body at `position`: compute_aabb's, bit for bit.
+aabb compute_aabb(const turned_shape& sh, const vec2& position);
+
 }  // namespace arena::world

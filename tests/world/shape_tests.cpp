@@ -1,7 +1,9 @@
 // Shapes: mass, centre of mass and inertia against their closed forms (and, for the shapes
 // whose formula we derived ourselves, against a brute-force integration over a fine grid).
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "server/world/manifold.hpp"
@@ -94,4 +96,48 @@ TEST_CASE("a bounding box follows the rotation", "[world][shape]") {
     CHECK(box.hi.x() == Approx(3.5));
     CHECK(box.lo.y() == Approx(3.0));
     CHECK(box.hi.y() == Approx(5.0));
+}
+
+TEST_CASE("a turned shape placed at its body is the shape turned and placed in one go, bit for bit", "[world][shape]") {
+    // The narrow phase turns each body's shape once a step and adds the positions per pair: the
+    // results must be the bits transform::apply and compute_aabb give, or replays would differ.
+    const std::vector<vec2> corners{{0.1f, -0.3f}, {1.7f, 0.2f}, {-0.4f, 0.9f}};
+    const auto triangle = make_polygon(corners);
+    REQUIRE(triangle);
+    const shape shapes[] = {make_box(0.5f, 0.5f), make_box(1.3f, 0.27f, 0.05f), triangle.value.geometry,
+                            make_capsule(0.8f, 0.3f), make_segment({-1.1f, 0.2f}, {0.7f, -0.4f})};
+    const auto bits = [](real x) {
+        return std::bit_cast<uint32_t>(x);
+    };
+    for (const shape& sh : shapes) {
+        for (int k = 0; k < 64; ++k) {
+            const real angle = 0.37f * static_cast<real>(k) - 11.0f;
+            const real c = std::cos(angle), s = std::sin(angle);
+            const vec2 position{-37.1f + 1.93f * static_cast<real>(k), 5.3f + 0.61f * static_cast<real>(k)};
+            const transform x{position, c, s};
+            const turned_shape t = turn(sh, c, s);
+            REQUIRE(t.count == sh.count);
+            CHECK(bits(t.radius) == bits(sh.radius));
+            for (int i = 0; i < sh.count; ++i) {
+                const vec2 placed = t.vertices[i] + position;
+                const vec2 expected = x.apply(sh.vertices[i]);
+                const vec2 normal = x.rotate(sh.normals[i]);
+                CHECK(bits(placed.x()) == bits(expected.x()));
+                CHECK(bits(placed.y()) == bits(expected.y()));
+                CHECK(bits(t.normals[i].x()) == bits(normal.x()));
+                CHECK(bits(t.normals[i].y()) == bits(normal.y()));
+            }
+            // The box: the placed vertices' extremes, grown by the rounding.
+            vec2 lo = x.apply(sh.vertices[0]), hi = lo;
+            for (int i = 1; i < sh.count; ++i) {
+                lo = lo.cwiseMin(x.apply(sh.vertices[i]));
+                hi = hi.cwiseMax(x.apply(sh.vertices[i]));
+            }
+            const aabb box = compute_aabb(sh, position, c, s);
+            CHECK(bits(box.lo.x()) == bits(lo.x() - sh.radius));
+            CHECK(bits(box.lo.y()) == bits(lo.y() - sh.radius));
+            CHECK(bits(box.hi.x()) == bits(hi.x() + sh.radius));
+            CHECK(bits(box.hi.y()) == bits(hi.y() + sh.radius));
+        }
+    }
 }
