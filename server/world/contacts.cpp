@@ -75,9 +75,23 @@ transform transform_of(const body& b, uint32_t index, const vec2& position, cons
     return {position, r.c, r.s};
 }
 
-// A body whose shape has edges (2 to 8 vertices), turned by the broadphase this step.
-bool is_hull(const cell_proxy& p, const broadphase_scratch& s) {
-    return !p.is_circle() && s.turned[p.index].count > 1;
+// Bodies ia and ib of which one at least has a shape, b at pb. Two hulls (2 to 8 vertices)
+// meet through the shapes the broadphase turned; a circle through the shapes themselves. Out
+// of line: inlined, it slowed the candidate loop around it, where sparse worlds spend their
+// narrow phase.
+__attribute__((noinline)) manifold collide_shapes(uint32_t ia, uint32_t ib, const vec2& pb,
+                                                  const collision_scene& scene, const broadphase_scratch& s,
+                                                  real spec) {
+    const body& a = scene.bodies[ia];
+    const body& b = scene.bodies[ib];
+    if (a.shape != no_shape && b.shape != no_shape) {
+        const turned_shape& ta = s.turned[ia];
+        const turned_shape& tb = s.turned[ib];
+        if (ta.count > 1 && tb.count > 1) return collide_hulls(ta, a.position, tb, pb, spec);
+    }
+    shape circle_a, circle_b;
+    return collide(shape_of(a, scene.pool, circle_a), transform_of(a, ia, a.position, s),
+                   shape_of(b, scene.pool, circle_b), transform_of(b, ib, pb, s), spec);
 }
 
 aabb box_of(const cell_proxy& p, real margin) {
@@ -125,13 +139,8 @@ void detect_contacts(const collision_scene& scene, const grid& g, const world_co
                                 manifold m;
                                 if (p.is_circle() && q.is_circle()) {
                                     m = collide_circles(a.position, a.radius, pb, b.radius, spec);
-                                } else if (is_hull(p, scratch) && is_hull(q, scratch)) {
-                                    m = collide_hulls(scratch.turned[ia], a.position, scratch.turned[ib], pb, spec);
                                 } else {
-                                    shape circle_a, circle_b;
-                                    m = collide(
-                                        shape_of(a, scene.pool, circle_a), transform_of(a, ia, a.position, scratch),
-                                        shape_of(b, scene.pool, circle_b), transform_of(b, ib, pb, scratch), spec);
+                                    m = collide_shapes(ia, ib, pb, scene, scratch, spec);
                                 }
                                 if (m.count == 0) return;
                                 contact c = make_contact(ia, ib, m, a.position, pb);

@@ -103,10 +103,10 @@ aabb compute_aabb(const shape& sh, const vec2& position, real c, real s);
 // the two positions. Turning then adding is the very arithmetic of turning and placing in one
 // go ((c·x − s·y) + p), so both give the same bits.
 struct turned_shape {
+    int count = 0;  // first: read with the first vertices, in one cache line
+    real radius = 0;
     std::array<vec2, max_polygon_vertices> vertices;  // m, only the first `count` are set
     std::array<vec2, max_polygon_vertices> normals;
-    int count = 0;
-    real radius = 0;
 };
 
 turned_shape turn(const shape& sh, real c, real s);
