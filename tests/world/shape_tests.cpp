@@ -99,8 +99,9 @@ TEST_CASE("a bounding box follows the rotation", "[world][shape]") {
 }
 
 TEST_CASE("a turned shape placed at its body is the shape turned and placed in one go, bit for bit", "[world][shape]") {
-    // The narrow phase turns each body's shape once a step and adds the positions per pair: the
-    // results must be the bits transform::apply and compute_aabb give, or replays would differ.
+    // The broadphase turns each body's shape once a step and the narrow phase adds the positions
+    // per pair: the results must be the bits transform::apply and compute_aabb give, or replays
+    // would differ.
     const std::vector<vec2> corners{{0.1f, -0.3f}, {1.7f, 0.2f}, {-0.4f, 0.9f}};
     const auto triangle = make_polygon(corners);
     REQUIRE(triangle);
