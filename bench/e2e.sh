@@ -7,7 +7,8 @@
 # against Colyseus's own matchmaker filling rooms of 8. One markdown table per part.
 # Env: E2E_BOTS ("64 256 512"), E2E_SECONDS (20), E2E_LARGE (1000), E2E_LARGE_RADIUS (50),
 #      E2E_ROOMS_BOTS (400), E2E_ROOMS_RUNS (1), COLYSEUS (../shared/peers/colyseus),
-#      E2E_PARTS ("one colyseus rooms": which parts run).
+#      E2E_PARTS ("one colyseus rooms": which parts run), E2E_SETTLE (3: seconds of each run before
+#      its steady-state CPU is measured, Colyseus' warm-up).
 set -euo pipefail
 bin=${1:-build/bin}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -22,6 +23,11 @@ parts=" ${E2E_PARTS:-one colyseus rooms} "
 part() { [[ "$parts" == *" $1 "* ]]; }
 pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
+settle=${E2E_SETTLE:-3}
+ticks_per_s=$(getconf CLK_TCK)
+cpu_ticks() {  # utime + stime of a process, in clock ticks
+  awk '{ print $14 + $15 }' "/proc/$1/stat"
+}
 
 # run_arena N LABEL [SERVER_FLAGS] [BOTS_FLAGS]: one run; leaves $work/LABEL.server.json and
 # $work/LABEL.bots.json. The flag lists are single words split on spaces.
@@ -37,7 +43,17 @@ run_arena() {
   done
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   "${pin_bots[@]}" "$bin/arena-bots" --port "$port" --bots "$n" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet "${bots_flags[@]}" --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 || true
+    --behavior mixed --seed 1 --quiet "${bots_flags[@]}" --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 &
+  local bots=$!
+  # The steady state, measured as Colyseus' run.sh and the floor measure theirs: the server's
+  # CPU from SETTLE s after the bots start (every join done) to 1 s before they stop.
+  sleep "$settle"
+  local cpu0 t0 cpu1 t1
+  cpu0=$(cpu_ticks "$server"); t0=$(date +%s.%N)
+  sleep "$((seconds - settle - 1))"
+  cpu1=$(cpu_ticks "$server"); t1=$(date +%s.%N)
+  echo "{\"cpu_per_s\": $(python3 -c "print(($cpu1 - $cpu0) / $ticks_per_s / ($t1 - $t0))")}" > "$work/$label.steady.json"
+  wait "$bots" || true
   # Stopped as soon as the bots are done, so that its CPU per second covers the load only.
   kill -TERM "$server"
   wait "$server" || true

@@ -17,11 +17,16 @@ def arena_row(work, label):
     duration = s["duration_s"]
     cpu = s["process"]["cpu_user_s"] + s["process"]["cpu_system_s"]
     fig = b["figures"]
+    try:
+        steady = load(f"{work}/{label}.steady.json")["cpu_per_s"]
+    except (OSError, KeyError, ValueError):
+        steady = None  # a run from before the steady window was measured
     return {
         "n": n,
         "tick": s["tick_ms"],
         "overruns": s["overruns"],
-        "cpu_per_s": cpu / duration,
+        "cpu_per_s": cpu / duration,  # the whole run: start, joins and shutdown included
+        "steady_cpu_per_s": steady,  # every client joined, as Colyseus' and the floor's figures are
         "rss_mb": s["process"]["peak_rss_kib"] / 1024,
         "out_per_client": s["bytes_out"] / duration / n,
         "joined": b["joined"],
@@ -96,18 +101,21 @@ def rooms_table(work):
     matches = [m for m in s.get("matches", []) if m["mode"] == "room8"]
     gap = b["figures"].get("snapshot_gap_ms", {})
     per_match_ms = a["tick"]["mean"] / max(1, len(matches))
-    print("| {} clients in matches of 8 | matches | server CPU s per s | peak RSS MB | bytes per client per s | snapshot gap p99 ms |".format(a["n"]))
-    print("|---|---:|---:|---:|---:|---:|")
-    print(f"| Arena (delta, whole match in view) | {len(matches)} | {a['cpu_per_s']:.3f} | {a['rss_mb']:.1f} | {a['out_per_client']:.0f} | {gap.get('p99', 0):.1f} |")
+    print("| {} clients in matches of 8 | matches | server CPU s per s | whole run | peak RSS MB | bytes per client per s | snapshot gap p99 ms |".format(a["n"]))
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    print(f"| Arena (delta, whole match in view) | {len(matches)} | {steady_cpu(a):.3f} | {a['cpu_per_s']:.3f} | {a['rss_mb']:.1f} | {a['out_per_client']:.0f} | {gap.get('p99', 0):.1f} |")
     c = last_json_line(f"{work}/colyseus-rooms.json")
     if c is not None:
         c_cpu = c["server_cpu_pct_of_core"] / 100
-        print(f"| Colyseus 0.18, ROOM_SIZE=8 | {c.get('rooms', '')} | {c_cpu:.3f} | {c['server_peak_rss_mb']:.1f} | {c['recv_bytes_per_s_per_client']:.0f} | |")
+        print(f"| Colyseus 0.18, ROOM_SIZE=8 | {c.get('rooms', '')} | {c_cpu:.3f} | | {c['server_peak_rss_mb']:.1f} | {c['recv_bytes_per_s_per_client']:.0f} | |")
     t = last_json_line(f"{work}/tcp-floor-rooms.json")
     if t is not None:
-        print(f"| TCP floor: the same messages, no game | | {t['server_cpu_s_per_s']:.3f} | | | |")
+        print(f"| TCP floor: the same messages, no game | | {t['server_cpu_s_per_s']:.3f} | | | | |")
     print()
-    of_colyseus, of_floor = rooms_ratios(work)
+    print("Server CPU is each server's steady state, every client joined (Colyseus after its 3 s warm-up, the floor "
+          "after its last accept, Arena from 3 s after its bots start to 1 s before they stop); Arena's whole run "
+          "counts its start, the joins and the shutdown as well.")
+    of_colyseus, of_floor, _ = rooms_ratios(work)
     if of_colyseus is not None:
         print(f"Arena's CPU is {of_colyseus:.2f} of Colyseus's (goal: at most 0.33)", end="")
         if of_floor is not None:
@@ -119,24 +127,33 @@ def rooms_table(work):
           f"share the core).")
 
 
+def steady_cpu(row):
+    """A run's steady-state CPU, or its whole run's where the steady window was not measured."""
+    return row["cpu_per_s"] if row["steady_cpu_per_s"] is None else row["steady_cpu_per_s"]
+
+
 def rooms_ratios(work):
     """(Arena / Colyseus, Arena / floor) of one run's folder; None where a figure is missing."""
-    a = arena_row(work, "arena-rooms")["cpu_per_s"]
+    row = arena_row(work, "arena-rooms")
+    a = steady_cpu(row)
     c = last_json_line(f"{work}/colyseus-rooms.json")
     t = last_json_line(f"{work}/tcp-floor-rooms.json")
     return (a / (c["server_cpu_pct_of_core"] / 100) if c else None,
-            a / t["server_cpu_s_per_s"] if t else None)
+            a / t["server_cpu_s_per_s"] if t else None,
+            row["cpu_per_s"] / t["server_cpu_s_per_s"] if t else None)
 
 
 def rooms_median(works):
     runs = [rooms_ratios(w) for w in works]
-    for k, (name, goal, unit) in enumerate([("Colyseus's", 0.33, ""), ("the floor's", 1.3, "x")]):
+    for k, (name, goal, unit) in enumerate([("Colyseus's", 0.33, ""), ("the floor's", 1.3, "x"),
+                                             ("the floor's, Arena's whole run", None, "x")]):
         values = sorted(r[k] for r in runs if r[k] is not None)
         if not values:
             continue
         middle = statistics.median(values)
         listed = ", ".join(f"{v:.2f}{unit}" for v in values)
-        print(f"Over {len(values)} runs, Arena's CPU against {name}: median {middle:.2f}{unit} ({listed}; goal: at most {goal}{unit}).")
+        aim = f"; goal: at most {goal}{unit}" if goal else ""
+        print(f"Over {len(values)} runs, Arena's CPU against {name}: median {middle:.2f}{unit} ({listed}{aim}).")
 
 
 def matches_table(work):
