@@ -1,6 +1,7 @@
 #include "protocol/framing.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "server/world/assert.hpp"
@@ -56,6 +57,15 @@ std::size_t frame_reader::feed(std::span<const std::uint8_t> in) {
         commit(n);
     }
     return consumed;
+}
+
+std::span<const std::uint8_t> frame_reader::whole_frame_at(std::span<const std::uint8_t> in) const noexcept {
+    if (state_ != state::need_prefix || filled_ != 0 || in.size() < frame_prefix_size ||
+        reinterpret_cast<std::uintptr_t>(in.data()) % alignof(std::uint64_t) != 0)
+        return {};
+    const std::uint32_t length = world::load_le32(in.data());
+    if (length > max_body_ || length < min_frame_body || in.size() - frame_prefix_size < length) return {};
+    return in.first(frame_prefix_size + std::size_t{length});
 }
 
 void frame_reader::on_prefix_complete() {

@@ -48,6 +48,13 @@ public:
     // were consumed; feed the rest after next(). Returns 0 while a frame is ready or failed.
     std::size_t feed(std::span<const std::uint8_t> bytes);
 
+    // --- in place ------------------------------------------------------------------------
+    // A whole frame at the start of `in`, when the reader holds nothing of one and `in` starts
+    // on an 8-byte boundary: returned where it lies, as frame() would hold it, without a copy
+    // (most reads of a client's stream start with a whole Input). Empty otherwise, and when
+    // its prefix is out of bounds: feed() those bytes, which copies them or fails as always.
+    [[nodiscard]] std::span<const std::uint8_t> whole_frame_at(std::span<const std::uint8_t> in) const noexcept;
+
     // --- results -------------------------------------------------------------------------
     [[nodiscard]] state current() const noexcept { return state_; }
     [[nodiscard]] bool has_frame() const noexcept { return state_ == state::frame_ready; }

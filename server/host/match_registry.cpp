@@ -1,5 +1,6 @@
 #include "server/host/match_registry.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <exception>
@@ -52,7 +53,9 @@ hosted_match& match_registry::start(const config::mode& mode, bool on_demand, bo
         entry.end_tick = std::max<uint32_t>(1, static_cast<uint32_t>(mode.duration_s * config.tick_rate));
     entry.game = std::move(game);
     ++created_;
-    return matches_.emplace(key, std::move(entry)).first->second;
+    hosted_match& added = matches_.emplace(key, std::move(entry)).first->second;
+    index_.push_back({key, &added, added.game.get()});  // keys only grow: the index stays in order
+    return added;
 }
 
 std::string match_registry::new_id() {
@@ -72,8 +75,9 @@ hosted_match* match_registry::find(std::string_view id) {
 }
 
 match::match& match_registry::match_of(const match::connection& c) {
-    const auto it = matches_.find(c.match_key);
-    return it == matches_.end() ? *default_->game : *it->second.game;
+    const auto it = std::lower_bound(index_.begin(), index_.end(), c.match_key,
+                                     [](const indexed_match& m, uint64_t key) { return m.key < key; });
+    return it == index_.end() || it->key != c.match_key ? *default_->game : *it->game;
 }
 
 bool match_registry::reclaim_empty() {
@@ -207,7 +211,7 @@ void match_registry::tick_all(const std::function<int64_t()>& now_ns,
     };
     std::vector<outcome> outcomes;
     outcomes.reserve(matches_.size());
-    for (auto& [key, m] : matches_) outcomes.push_back({&m});
+    for (const indexed_match& m : index_) outcomes.push_back({m.hosted});
     auto tick_one = [&](size_t i, bool deferred) {
         outcome& o = outcomes[i];
         match::match& game = *o.m->game;
@@ -272,6 +276,7 @@ void match_registry::end(std::map<uint64_t, hosted_match>::iterator it, const st
         // Its rules cannot say their scoreboard.
         ended_.push_back({m.id, m.mode, why, {}, {}, 0, m.ticks_late, m.ticks_dropped});
     }
+    std::erase_if(index_, [key = it->first](const indexed_match& m) { return m.key == key; });
     matches_.erase(it);
 }
 

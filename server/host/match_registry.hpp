@@ -153,6 +153,14 @@ private:
     match::logger::sink log_;
     match::token_check check_token_;
     std::map<uint64_t, hosted_match> matches_;  // by key: creation order
+    // The same matches in one array, by key: every input finds its match here (match_of) and
+    // every tick walks it, without chasing the map's nodes through memory.
+    struct indexed_match {
+        uint64_t key;
+        hosted_match* hosted;
+        match::match* game;
+    };
+    std::vector<indexed_match> index_;
     hosted_match* default_ = nullptr;
     uint64_t next_key_ = 0;
     uint64_t created_ = 0;

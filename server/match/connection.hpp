@@ -13,6 +13,8 @@
 
 namespace arena::match {
 
+struct client_record;  // what a match keeps of a connection it holds (match.hpp)
+
 class connection {
 public:
     virtual ~connection() = default;
@@ -51,6 +53,11 @@ public:
     // numbers them (server/host/match_registry.hpp): 0, the default match, until a Hello moves
     // it. The registry alone reads and writes it; a match never looks at it.
     uint64_t match_key = 0;
+    // The record of this connection in the match that holds it; null while none does. That
+    // match alone sets it (connect) and clears it (when it forgets the connection, and when it
+    // ends), so that each message finds its client without a search. Mutable: the match's
+    // bookkeeping, not the connection's state.
+    mutable client_record* record = nullptr;
 };
 
 }  // namespace arena::match

@@ -57,6 +57,12 @@ match::match(const match_config& config, const world::world_config& world_config
         kinds_.set_weight(static_cast<uint8_t>(kind), rules_->snapshot_weight(static_cast<uint8_t>(kind)));
 }
 
+match::~match() {
+    // A connection outlives the match it was in (its transport closes it later): it must not
+    // keep a record that is gone.
+    for (auto& [c, cl] : clients_) c->record = nullptr;
+}
+
 uint32_t match::snapshot_interval() const {
     return std::max<uint32_t>(1, config_.tick_rate / std::max<uint16_t>(1, config_.snapshot_rate));
 }
@@ -72,9 +78,9 @@ bool match::receive(connection& c, const protocol::Message& message) {
 }
 
 bool match::receive(connection& c, const protocol::Message& message, int64_t arrival_ns, int64_t held_ns) {
-    auto it = clients_.find(&c);
-    if (it == clients_.end()) return false;  // bytes that were on their way when it was closed
-    client& cl = it->second;
+    // Bytes that were on their way when it was closed, or a connection this match never held.
+    if (!c.record || c.record->owner != this) return false;
+    client& cl = *c.record;
     admitted_message admitted = admission_.admit_message(cl.standing, message);
     if (auto* no = std::get_if<rejection>(&admitted)) {
         reject(c, *no);
@@ -95,13 +101,12 @@ bool match::receive(connection& c, const protocol::Message& message, int64_t arr
         c.send(protocol::encode_pong(m->client_time, world_.tick(), held_us));
         return true;
     }
-    forget(it, close_cause{close_cause::kind::client_bye, {}, std::get<bye_message>(admitted).reason});
+    forget(clients_.find(&c), close_cause{close_cause::kind::client_bye, {}, std::get<bye_message>(admitted).reason});
     return false;
 }
 
 bool match::on_input(connection& c, client& cl, const protocol::input_msg& input, int64_t arrival_ns) {
-    auto it = players_.find(cl.player_id);
-    if (it == players_.end()) return true;
+    if (!cl.player) return true;
     ++counters_.inputs_received;
     auto admitted = admission_.admit_input(cl.standing, input, arrival_ns, world_.tick());
     if (auto* no = std::get_if<rejection>(&admitted)) {
@@ -113,7 +118,7 @@ bool match::on_input(connection& c, client& cl, const protocol::input_msg& input
         ++counters_.stale_inputs;
         return true;
     }
-    player& p = it->second;
+    player& p = *cl.player;
     p.snapshots.acknowledge(input.snapshot_ack);
     for (const sequenced_input& earlier : in.recovered) p.inputs.push(earlier);
     counters_.inputs_recovered += in.recovered.size();
@@ -170,6 +175,7 @@ void match::forget(client_map::iterator it, const close_cause& cause) {
     const connection* c = it->first;
     const world::player_id player_id = it->second.player_id;
     if (it->second.standing.at == client_standing::stage::awaiting_hello) --awaiting_hello_;
+    c->record = nullptr;
     clients_.erase(it);
     if (!player_id) return;
     if (auto s = spectators_.find(player_id); s != spectators_.end()) {
@@ -197,6 +203,7 @@ void match::leave(player_map::iterator it, const close_cause& cause) {
 
 void match::remove_player(player_map::iterator it, std::string_view reason) {
     player& p = it->second;
+    if (p.who && p.who->record) p.who->record->player = nullptr;  // its client, if any, plays no more
     if (p.body_id) {
         pending_leaves_.push_back(p.body_id);
     } else {

@@ -82,11 +82,41 @@ struct match_counters {
 // Every figure of `c`, to `out`: the one place that names them for the stats and /metrics.
 void report(const match_counters& c, figure_sink& out);
 
+class match;
+
+// A player of a match, connected or waiting in the reconnect grace.
+struct match_player {
+    connection* who = nullptr;  // nullptr while disconnected within the grace period
+    std::string name;
+    std::string identity;
+    uint32_t disconnected_at_tick = 0;
+    world::body_id body_id;  // none (0) until spawned
+    input_buffer inputs;
+    snapshot_client snapshots;  // delta baselines and the client's acknowledgement
+    uint32_t game_sent = 0;     // BodyState clients: the game's version the last snapshot brought (game_feed)
+    uint32_t events_from = 0;   // the game's version at connection: the events it hears come after it
+};
+
+// What a match keeps of a connection it holds; the connection points to it (connection::record).
+struct client_record {
+    const match* owner = nullptr;  // the match that holds the connection
+    uint64_t serial = 0;           // order of connection: a fixed order for what is done to every client
+    std::string address;           // the peer's address without its port
+    client_standing standing;
+    world::player_id player_id;      // none (0) until the Hello is accepted
+    match_player* player = nullptr;  // the player it plays, while the match has it (not a spectator's)
+};
+
 class match {
 public:
     // `check_token` verifies signed join tokens (unset: an open server, see admission.hpp).
     match(const match_config& config, const world::world_config& world_config, logger log = {},
           token_check check_token = {});
+    // Its connections' records point into it: it neither moves nor copies, and it clears them
+    // when it ends.
+    ~match();
+    match(const match&) = delete;
+    match& operator=(const match&) = delete;
 
     // A new connection. False: it was refused (its Reject is on its way) and is forgotten.
     bool connect(connection& c);
@@ -173,17 +203,7 @@ public:
     bool draining() const { return draining_; }
 
 private:
-    struct player {
-        connection* who = nullptr;  // nullptr while disconnected within the grace period
-        std::string name;
-        std::string identity;
-        uint32_t disconnected_at_tick = 0;
-        world::body_id body_id;  // none (0) until spawned
-        input_buffer inputs;
-        snapshot_client snapshots;  // delta baselines and the client's acknowledgement
-        uint32_t game_sent = 0;     // BodyState clients: the game's version the last snapshot brought (game_feed)
-        uint32_t events_from = 0;   // the game's version at connection: the events it hears come after it
-    };
+    using player = match_player;
     // A client that watches: it has no body, no input buffer, no score line and no identity
     // (admission.hpp); it gets the Welcome, the snapshots and the game like a player, and the
     // last Bye. Its fields that the snapshots need are named as the player's.
@@ -194,12 +214,7 @@ private:
         uint32_t game_sent = 0;    // the game's version the last snapshot brought (game_feed)
         uint32_t events_from = 0;  // the game's version at connection: the events it hears come after it
     };
-    struct client {
-        uint64_t serial = 0;  // order of connection: a fixed order for what is done to every client
-        std::string address;  // the peer's address without its port
-        client_standing standing;
-        world::player_id player_id;  // none (0) until the Hello is accepted
-    };
+    using client = client_record;
     using client_map = std::unordered_map<const connection*, client>;
     using player_map = std::map<world::player_id, player>;        // by player id: a deterministic order
     using spectator_map = std::map<world::player_id, spectator>;  // by the id of its Welcome

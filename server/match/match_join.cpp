@@ -21,6 +21,8 @@ bool match::connect(connection& c) {
     cl.standing.connected_tick = world_.tick();
     auto [it, inserted] = clients_.emplace(&c, cl);
     if (!inserted) return true;  // already known: a transport bug, but harmless
+    it->second.owner = this;
+    c.record = &it->second;
     ++awaiting_hello_;
     auto verdict = admission_.admit_connection(clients_.size(), awaiting_hello_);
     if (auto* no = std::get_if<rejection>(&verdict)) {
@@ -37,6 +39,7 @@ void match::release(connection& c) {
     auto it = clients_.find(&c);
     if (it == clients_.end() || it->second.standing.at != client_standing::stage::awaiting_hello) return;
     --awaiting_hello_;
+    c.record = nullptr;
     clients_.erase(it);
 }
 
@@ -122,6 +125,7 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
         log_("reconnect player=%u body=%u name=%s", id.value(), p.body_id.value(), p.name.c_str());
     }
     cl.player_id = id;
+    cl.player = &players_.at(id);                     // a map's element stays where it is until erased
     cl.standing.at = client_standing::stage::joined;  // a new connection numbers its inputs from 1 again
     cl.standing.last_input_tick = world_.tick();      // the idle timeout starts now
     --awaiting_hello_;

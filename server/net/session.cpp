@@ -64,10 +64,10 @@ void session::start() {
 namespace {
 
 // recv with the kernel's receive time (SO_TIMESTAMPNS, CLOCK_REALTIME) of the newest bytes it
-// returned: how long they waited before this read, in ns; -1 when the kernel gave no time.
-// Older bytes read with them waited longer, so for a Ping read beside later inputs this is a
-// lower bound of its wait.
-ssize_t recv_timed(int fd, std::span<uint8_t> buffer, int64_t& held_ns) {
+// returned: how long they waited before the read pass began (`wall_ns`, CLOCK_REALTIME), in ns;
+// -1 when the kernel gave no time. Older bytes read with them waited longer, so for a Ping read
+// beside later inputs this is a lower bound of its wait.
+ssize_t recv_timed(int fd, std::span<uint8_t> buffer, int64_t wall_ns, int64_t& held_ns) {
     iovec io{buffer.data(), buffer.size()};
     alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
     msghdr msg{};
@@ -80,12 +80,11 @@ ssize_t recv_timed(int fd, std::span<uint8_t> buffer, int64_t& held_ns) {
     if (n <= 0) return n;
     for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
         if (c->cmsg_level != SOL_SOCKET || c->cmsg_type != SCM_TIMESTAMPNS) continue;
-        timespec arrived{}, now{};
+        timespec arrived{};
         std::memcpy(&arrived, CMSG_DATA(c), sizeof arrived);
-        ::clock_gettime(CLOCK_REALTIME, &now);
-        const int64_t waited = (static_cast<int64_t>(now.tv_sec) - arrived.tv_sec) * 1'000'000'000 +
-                               (static_cast<int64_t>(now.tv_nsec) - arrived.tv_nsec);
-        held_ns = std::max<int64_t>(waited, 0);  // a wall clock stepped back: no wait
+        const int64_t waited = wall_ns - (static_cast<int64_t>(arrived.tv_sec) * 1'000'000'000 + arrived.tv_nsec);
+        // Bytes that came during the pass, or a wall clock stepped back: no wait.
+        held_ns = std::max<int64_t>(waited, 0);
     }
     return n;
 }
@@ -103,7 +102,7 @@ ssize_t send_some(int fd, std::span<iovec> frames) {
 
 }  // namespace
 
-void session::read_available(std::span<uint8_t> buffer, int64_t now_ns) {
+void session::read_available(std::span<uint8_t> buffer, int64_t now_ns, int64_t wall_ns) {
     // What is there, without waiting: the server calls this once per tick for every session,
     // so one recv serves every input that arrived since the last tick (a client sends about one
     // per tick). Waiting for readability cost an epoll_ctl per input (Asio re-arms the socket)
@@ -111,7 +110,7 @@ void session::read_available(std::span<uint8_t> buffer, int64_t now_ns) {
     while (!closing_) {
         if (fd_ < 0) errno = EBADF;  // start() could not take the descriptor from Asio
         int64_t held_ns = -1;
-        const ssize_t n = fd_ < 0 ? -1 : recv_timed(fd_, buffer, held_ns);
+        const ssize_t n = fd_ < 0 ? -1 : recv_timed(fd_, buffer, wall_ns, held_ns);
         if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return;
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) {
@@ -134,6 +133,13 @@ void session::read_available(std::span<uint8_t> buffer, int64_t now_ns) {
 bool session::take_frames(std::span<const uint8_t> data, int64_t arrival_ns, int64_t held_ns) {
     host::intake& intake = owner_.host().intake();
     while (!closing_) {
+        // A whole frame where it lies, most reads' first: not copied into the reader.
+        if (const auto whole = reader_.whole_frame_at(data); !whole.empty()) {
+            data = data.subspan(whole.size());
+            if (intake.take(*this, whole, arrival_ns, held_ns).go_on) continue;
+            close_after({});  // as below
+            return false;
+        }
         data = data.subspan(reader_.feed(data));
         if (reader_.failed()) {
             intake.refuse_unreadable(*this, reader_);

@@ -38,8 +38,9 @@ public:
     void start();
     // Reads what the socket holds now into `buffer` (shared: one thread) and hands every
     // complete frame to the intake; never waits. The transport calls it once per tick.
-    // `now_ns`: the host's clock when the read pass began (one reading serves every session).
-    void read_available(std::span<uint8_t> buffer, int64_t now_ns);
+    // `now_ns`: the host's clock when the read pass began (one reading serves every session);
+    // `wall_ns`: CLOCK_REALTIME then, in ns, against which the kernel's receive times are read.
+    void read_available(std::span<uint8_t> buffer, int64_t now_ns, int64_t wall_ns);
     void send(protocol::frame_bytes frame) override;
     void send_snapshot(const protocol::snapshot_encoder& snapshot, uint32_t ack_sequence) override;
     void send_snapshot_frame(std::span<const uint8_t> frame) override;

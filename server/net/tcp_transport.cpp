@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <ctime>
 
 #include "server/host/log.hpp"
 #include "server/net/session.hpp"
@@ -66,8 +67,11 @@ void tcp_transport::read_before_tick() {
     // it times, and a reading per recv was a cost of its own.
     reading_sessions_ = true;
     const int64_t now = host_.now_ns();
+    timespec wall{};
+    ::clock_gettime(CLOCK_REALTIME, &wall);  // the kernel's receive times are on this clock
+    const int64_t wall_ns = static_cast<int64_t>(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
     for (size_t i = 0; i < sessions_.size(); ++i)
-        if (session* s = sessions_[i].get()) s->read_available(read_buffer_, now);
+        if (session* s = sessions_[i].get()) s->read_available(read_buffer_, now, wall_ns);
     reading_sessions_ = false;
     if (!gone_.empty()) {
         std::erase(sessions_, nullptr);

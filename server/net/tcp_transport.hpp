@@ -63,7 +63,9 @@ private:
     std::vector<std::shared_ptr<session>> to_flush_;  // request_flush()'s, for the next flush_sessions()
     std::vector<std::shared_ptr<session>> flushing_;  // flush_sessions()' copy: flushing may ask again
     bool flush_posted_ = false;
-    std::array<uint8_t, 64 * 1024> read_buffer_{};  // one for every session: one thread reads
+    // One for every session: one thread reads. 8-byte aligned, as a frame handed over in place
+    // must be (protocol::frame_reader::whole_frame_at).
+    alignas(8) std::array<uint8_t, 64 * 1024> read_buffer_{};
     uint64_t next_session_id_ = 1;
 };
 

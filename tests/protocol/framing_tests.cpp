@@ -138,3 +138,38 @@ TEST_CASE("The exact-count interface refuses an oversize prefix before asking fo
     CHECK(reader.next_buffer().empty());  // the session never reads a body byte
     CHECK_THAT(std::string(reader.error()), Catch::Contains("exceeds the limit of 100"));
 }
+
+TEST_CASE("A whole aligned frame is handed over where it lies, and anything else goes through feed()", "[protocol]") {
+    const auto ping = ap::encode_ping(1234);
+    const auto second = ap::encode_ping(5678);
+    // Two frames back to back in an 8-byte aligned buffer, and one byte more.
+    std::vector<std::uint64_t> words((ping.size() + second.size() + 1 + 7) / 8);
+    auto* base = reinterpret_cast<std::uint8_t*>(words.data());
+    std::copy(ping.begin(), ping.end(), base);
+    std::copy(second.begin(), second.end(), base + ping.size());
+    const std::span<const std::uint8_t> all(base, ping.size() + second.size() + 1);
+
+    ap::frame_reader reader;
+    const auto whole = reader.whole_frame_at(all);
+    REQUIRE(whole.data() == base);  // in place, not a copy
+    CHECK(std::vector<std::uint8_t>(whole.begin(), whole.end()) == std::vector<std::uint8_t>(ping.begin(), ping.end()));
+
+    // Not on an 8-byte boundary: FlatBuffers reads in place, so the reader must copy it.
+    CHECK(reader.whole_frame_at(all.subspan(1)).empty());
+    // Cut short: the rest is on its way.
+    CHECK(reader.whole_frame_at(all.first(ping.size() - 1)).empty());
+    CHECK(reader.whole_frame_at(all.first(3)).empty());
+    // A reader holding part of a frame takes nothing in place: its bytes come first.
+    CHECK(reader.feed(all.first(2)) == 2);
+    CHECK(reader.whole_frame_at(all).empty());
+
+    // Out of bounds lengths are left to feed(), which refuses them as it always does.
+    ap::frame_reader small(100);
+    const auto too_large = prefix_then_body(101, 101);
+    std::vector<std::uint64_t> large_words((too_large.size() + 7) / 8);
+    auto* large = reinterpret_cast<std::uint8_t*>(large_words.data());
+    std::copy(too_large.begin(), too_large.end(), large);
+    CHECK(small.whole_frame_at({large, too_large.size()}).empty());
+    std::copy_n(prefix(0).begin(), 4, large);
+    CHECK(small.whole_frame_at({large, too_large.size()}).empty());
+}
