@@ -41,20 +41,51 @@ inline body_change diff(const quantized_body& b, const quantized_body& c, elapse
     return d;
 }
 
-// How many values of each bit width (0..64) one class has.
-using width_counts = std::array<std::uint64_t, 65>;
+// How many values of each bit width (0..64) one class has. Only the widths present hold a
+// count, so a tally needs no clearing and the order's search below visits those alone (a class
+// holds a few of the 65): clearing and walking every width of every class was most of a small
+// match's encoding.
+class width_tally {
+public:
+    width_tally() noexcept {}  // user-provided: `width_tally t{}` must not clear counts_ either
+
+    void add(std::uint64_t n) noexcept {
+        const auto w = static_cast<unsigned>(std::bit_width(n));
+        if (has(w)) {
+            ++counts_[w];
+            return;
+        }
+        if (w < 64) {
+            low_ |= std::uint64_t{1} << w;
+        } else {
+            top_ = true;
+        }
+        counts_[w] = 1;
+    }
+    [[nodiscard]] bool has(unsigned w) const noexcept { return w < 64 ? (low_ >> w & 1) != 0 : top_; }
+    // Values of width w; 0 for a width not present.
+    [[nodiscard]] std::uint64_t count(unsigned w) const noexcept { return has(w) ? counts_[w] : 0; }
+    // The widths present, narrowest first, into `out`; how many there are.
+    unsigned present(std::array<unsigned, 65>& out) const noexcept {
+        unsigned n = 0;
+        for (std::uint64_t bits = low_; bits != 0; bits &= bits - 1)
+            out[n++] = static_cast<unsigned>(std::countr_zero(bits));
+        if (top_) out[n++] = 64;
+        return n;
+    }
+
+private:
+    std::array<std::uint64_t, 65> counts_;  // left uninitialised: a width is counted from its first value
+    std::uint64_t low_ = 0;                 // bit w: width w (below 64) present
+    bool top_ = false;                      // width 64 present
+};
 
 // The order that makes the class shortest, estimating each value by the smallest of its
 // width (the decoder does not care how the order was chosen).
-[[nodiscard]] inline unsigned best_order(const width_counts& widths) noexcept {
-    // Only widths present matter (a class holds a few of the 65), and no order beyond the
-    // widest value can be shorter. Listing them first keeps the search to orders × present
-    // widths: walking all 65 widths for every order was most of a small match's encoding.
-    std::array<unsigned, 65> present{};
-    unsigned count = 0;
-    for (unsigned w = 0; w < 65; ++w) {
-        if (widths[w] != 0) present[count++] = w;
-    }
+[[nodiscard]] inline unsigned best_order(const width_tally& widths) noexcept {
+    // No order beyond the widest value can be shorter.
+    std::array<unsigned, 65> present;
+    const unsigned count = widths.present(present);
     const unsigned widest = count == 0 ? 0 : present[count - 1];
     unsigned best = 0;
     std::uint64_t best_bits = UINT64_MAX;
@@ -63,7 +94,7 @@ using width_counts = std::array<std::uint64_t, 65>;
         for (unsigned i = 0; i < count; ++i) {
             const unsigned w = present[i];
             const std::uint64_t n = w == 0 ? 0 : std::uint64_t{1} << (w - 1);
-            bits += widths[w] * golomb_bits(n, k);
+            bits += widths.count(w) * golomb_bits(n, k);
         }
         if (bits < best_bits) {
             best_bits = bits;
@@ -75,8 +106,8 @@ using width_counts = std::array<std::uint64_t, 65>;
 
 // First pass: how many values of each bit width each class has.
 struct stats_sink {
-    std::array<width_counts, f::class_count> widths{};
-    void code(f::code_class c, std::uint64_t n) noexcept { ++widths[c][std::bit_width(n)]; }
+    std::array<width_tally, f::class_count> widths;
+    void code(f::code_class c, std::uint64_t n) noexcept { widths[c].add(n); }
     void raw(std::uint64_t, unsigned) noexcept {}
     [[nodiscard]] unsigned best_order(f::code_class c) const noexcept { return records::best_order(widths[c]); }
 };

@@ -168,13 +168,12 @@ void shared_encoder::encode_walk(std::span<const std::uint32_t> current, std::sp
 
 void shared_encoder::write(std::span<const std::uint32_t> baseline, std::uint32_t checksum,
                            std::vector<std::uint8_t>& out) {
-    // This view's gap and id-gap orders (only these two classes: zeroing all ten classes'
-    // counts was a visible share of a client's encoding).
-    width_counts gaps{}, id_gaps{};
-    for (const touch& t : touches_) ++gaps[std::bit_width(t.gap)];
+    // This view's gap and id-gap orders (only these two classes: the others are the state's).
+    width_tally gaps, id_gaps;
+    for (const touch& t : touches_) gaps.add(t.gap);
     std::uint64_t next_id = 0;
     for (const std::uint32_t i : added_indices_) {
-        ++id_gaps[std::bit_width(state_[i].id - next_id)];
+        id_gaps.add(state_[i].id - next_id);
         next_id = std::uint64_t{state_[i].id} + 1;
     }
     std::array<unsigned, f::class_count> order = order_;
