@@ -344,3 +344,37 @@ TEST_CASE("under game rules the match tags each new body with the rules' kind an
     CHECK(sandbox.body_kind(1) == 0);
     CHECK(sandbox.scoreboard().empty());
 }
+
+TEST_CASE("a connection's record lives as long as its match holds it, and names that match", "[match]") {
+    fake_client c, taken_over;
+    protocol::input_msg input{};
+    input.sequence = 1;
+    input.thrust = 1;
+    {
+        match::match first(make_config(), world::asteroids_preset());
+        match::match second(make_config(), world::asteroids_preset());
+        CHECK(c.record == nullptr);
+        REQUIRE(join(first, c, hello(), "key-r") != 0);
+        REQUIRE(c.record != nullptr);
+        CHECK(c.record->owner == &first);
+        CHECK(c.record->player != nullptr);
+        first.tick();
+        // A match that does not hold the connection ignores what it sends, whatever its record says.
+        CHECK_FALSE(send_input(second, c, input));
+        CHECK(second.counters().inputs_received == 0);
+        CHECK(send_input(first, c, input));
+        CHECK(first.counters().inputs_received == 1);
+
+        // A takeover: the old connection is forgotten, the new one plays the same player.
+        REQUIRE(join(first, taken_over, hello(), "key-r") != 0);
+        CHECK(c.record == nullptr);
+        REQUIRE(taken_over.record != nullptr);
+        CHECK(taken_over.record->player != nullptr);
+        input.sequence = 2;
+        CHECK(send_input(first, taken_over, input));
+        CHECK(first.counters().inputs_received == 2);
+        CHECK_FALSE(send_input(first, c, input));  // the old connection's late bytes
+    }
+    // The match ended while holding the connection: its record went with it.
+    CHECK(taken_over.record == nullptr);
+}
