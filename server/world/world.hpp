@@ -98,6 +98,7 @@ public:
 
 private:
     void apply_inputs(const tick_inputs& inputs);
+    void apply_input(const body_input& in);  // one body's, if the body is still there
     // The middle of step(), from forces to the position pass: one of them per step.
     void step_one_pass(phase_laps& laps);    // config_.substeps == 1
     void step_substepped(phase_laps& laps);  // config_.substeps > 1
