@@ -70,13 +70,26 @@ void tcp_transport::read_before_tick() {
     timespec wall{};
     ::clock_gettime(CLOCK_REALTIME, &wall);  // the kernel's receive times are on this clock
     const int64_t wall_ns = static_cast<int64_t>(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
-    for (size_t i = 0; i < sessions_.size(); ++i)
+    for (size_t i = 0; i < sessions_.size(); ++i) {
+        fetch_ahead(i);
         if (session* s = sessions_[i].get()) s->read_available(read_buffer_, now, wall_ns);
+    }
     reading_sessions_ = false;
     if (!gone_.empty()) {
         std::erase(sessions_, nullptr);
         gone_.clear();
     }
+}
+
+void tcp_transport::fetch_ahead(size_t i) const {
+    // Each stage needs the one before it in the cache: the session three ahead, the match's
+    // record of the one two ahead (fetched a stage ago), the player of the next one.
+    const auto at = [&](size_t k) {
+        return k < sessions_.size() ? sessions_[k].get() : nullptr;
+    };
+    if (const session* s = at(i + 3)) __builtin_prefetch(s);
+    if (const session* s = at(i + 2); s && s->record) __builtin_prefetch(s->record);
+    if (const session* s = at(i + 1); s && s->record && s->record->player) __builtin_prefetch(s->record->player);
 }
 
 void tcp_transport::request_flush(std::shared_ptr<session> s) {
