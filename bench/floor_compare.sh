@@ -12,14 +12,27 @@
 # admission and timers cost, the part a transport can compare with the floor. The whole run's
 # CPU (joins and shutdown included) is printed beside it.
 #   bench/floor_compare.sh BOTS_AND_FLOOR_BIN SERVER_BIN [SERVER_BIN...]
-# Env: FLOOR_SECONDS (20), FLOOR_CLIENTS (200), FLOOR_SETTLE (3).
+# Env: FLOOR_SECONDS (20), FLOOR_CLIENTS (200), FLOOR_SETTLE (3), FLOOR_ROOM_SIZE (0: one match
+# of every client; N: the clients join-or-create matches of N, as make bench-e2e's rooms part
+# runs them: the asteroids preset without rocks, sandbox rules, one tick thread), FLOOR_ROUNDS
+# (1: the servers and the floor that many times over, alternating, one table a round: one
+# round's figures swing by several per cent on a shared machine).
 set -euo pipefail
 tools=$1; shift
 seconds=${FLOOR_SECONDS:-20}
 clients=${FLOOR_CLIENTS:-200}
 settle=${FLOOR_SETTLE:-3}
+room_size=${FLOOR_ROOM_SIZE:-0}
+rounds=${FLOOR_ROUNDS:-1}
 work=$(mktemp -d /tmp/arena-floor.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+server_mode=(); bots_mode=()
+if [ "$room_size" -gt 0 ]; then
+  echo "{\"modes\": [{\"name\": \"room$room_size\", \"preset\": \"asteroids\", \"rules\": \"sandbox\",
+    \"max_players\": $room_size, \"world\": {\"rocks\": {\"count\": 0}}}]}" > "$work/modes.json"
+  server_mode=(--modes "$work/modes.json" --threads 1 --max-matches 1000)
+  bots_mode=(--mode "room$room_size")
+fi
 pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 ticks_per_s=$(getconf CLK_TCK)
@@ -42,19 +55,20 @@ port_of() {  # PORT of the line "PREFIX HOST:PORT" in FILE, waiting up to 10 s
   echo "$p"
 }
 
-rows=()
 snapshot_bytes=""
 i=0
+for round in $(seq "$rounds"); do
+rows=()
 for bin in "$@"; do
   i=$((i + 1))
   "${pin_server[@]}" "$bin/arena-server" --port 0 --http-port 0 --max-players "$clients" \
     --max-connections $((2 * clients + 16)) --max-pending-handshakes "$clients" --view-radius 0 --rules sandbox \
-    --stats-json "$work/s$i.json" > "$work/s$i.out" 2> "$work/s$i.log" &
+    "${server_mode[@]}" --stats-json "$work/s$i.json" > "$work/s$i.out" 2> "$work/s$i.log" &
   server=$!
   port=$(port_of "$work/s$i.out" "listening on")
   http=$(port_of "$work/s$i.out" "http listening on")
   "${pin_bots[@]}" "$tools/arena-bots" --port "$port" --bots "$clients" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet --json "$work/b$i.json" > /dev/null 2>&1 &
+    --behavior mixed --seed 1 --quiet "${bots_mode[@]}" --json "$work/b$i.json" > /dev/null 2>&1 &
   bots=$!
   sleep "$settle"
   cpu0=$(cpu_ticks "$server"); step0=$(tick_seconds "$http"); t0=$(date +%s.%N)
@@ -62,22 +76,26 @@ for bin in "$@"; do
   cpu1=$(cpu_ticks "$server"); step1=$(tick_seconds "$http"); t1=$(date +%s.%N)
   wait "$bots" || true
   kill -TERM "$server"; wait "$server" || true
-  read -r steady ticks whole bytes < <(python3 - "$work/s$i.json" "$cpu0" "$cpu1" "$step0" "$step1" "$t0" "$t1" "$ticks_per_s" <<'PY'
+  read -r steady ticks whole bytes < <(python3 - "$work/s$i.json" "$work/b$i.json" "$cpu0" "$cpu1" "$step0" "$step1" "$t0" "$t1" "$ticks_per_s" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
-cpu0, cpu1, step0, step1, t0, t1, hz = map(float, sys.argv[2:])
+cpu0, cpu1, step0, step1, t0, t1, hz = map(float, sys.argv[3:])
 window = t1 - t0
 p = j["process"]
 s = j["snapshots"]
+# The snapshots' mean size: the default match's own figure, or with many matches (the default
+# one then empty) the bots' mean of what they received.
+size = s["delta_bytes"] / s["delta_frames"] if s["delta_frames"] else \
+    json.load(open(sys.argv[2]))["figures"]["snapshot_bytes"]["mean"]
 print((cpu1 - cpu0) / hz / window, (step1 - step0) / window,
-      (p["cpu_user_s"] + p["cpu_system_s"]) / j["duration_s"],
-      round(s["delta_bytes"] / max(1, s["delta_frames"])))
+      (p["cpu_user_s"] + p["cpu_system_s"]) / j["duration_s"], round(size))
 PY
 )
   [ -n "$snapshot_bytes" ] || snapshot_bytes=$bytes
   rows+=("$bin/arena-server $steady $ticks $whole $bytes")
 done
 
+[ "$rounds" -eq 1 ] || printf '\nRound %s of %s\n\n' "$round" "$rounds"
 taskset -c 0,1 "$tools/arena-bench-tcp-floor" --clients "$clients" --seconds "$((seconds - settle - 1))" \
   --snapshot-bytes "$snapshot_bytes" > "$work/floor.json"
 floor=$(python3 -c 'import json,sys
@@ -94,4 +112,5 @@ for row in "${rows[@]}"; do
 n, s, t, w, b, f = sys.argv[1], *map(float, sys.argv[2:])
 print(f'| {n} | {s:.3f} | {s/f:.2f} | {t:.3f} | {s-t:.3f} | {(s-t)/f:.2f} | {w:.3f} | {b:.0f} |')" \
     "$name" "$steady" "$ticks" "$whole" "$bytes" "$floor"
+done
 done
