@@ -17,7 +17,16 @@ struct client_record;  // what a match keeps of a connection it holds (match.hpp
 
 class connection {
 public:
-    virtual ~connection() = default;
+    connection() = default;
+    // A copy is a new connection, held by no match yet: it takes the match key, not the record.
+    connection(const connection& other) : match_key(other.match_key) {}
+    connection& operator=(const connection& other) {
+        match_key = other.match_key;
+        return *this;
+    }
+    // Tells the match that holds it, if one does, that it is gone: a match that ends after its
+    // connections (a test's, or at exit) must not write to them (connection.cpp).
+    virtual ~connection();
     // A control message (Welcome, Pong, Reject, Bye): always delivered, in order.
     virtual void send(protocol::frame_bytes frame) = 0;
     // The newest snapshot with this client's ack: replaces one that is still unsent.
@@ -55,8 +64,8 @@ public:
     uint64_t match_key = 0;
     // The record of this connection in the match that holds it; null while none does. That
     // match alone sets it (connect) and clears it (when it forgets the connection, and when it
-    // ends), so that each message finds its client without a search. Mutable: the match's
-    // bookkeeping, not the connection's state.
+    // ends before the connection), so that each message finds its client without a search.
+    // Mutable: the match's bookkeeping, not the connection's state.
     mutable client_record* record = nullptr;
 };
 

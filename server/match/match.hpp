@@ -105,6 +105,7 @@ struct client_record {
     client_standing standing;
     world::player_id player_id;      // none (0) until the Hello is accepted
     match_player* player = nullptr;  // the player it plays, while the match has it (not a spectator's)
+    bool connection_gone = false;    // the connection ended before the match forgot it (~connection)
 };
 
 class match {
@@ -112,8 +113,8 @@ public:
     // `check_token` verifies signed join tokens (unset: an open server, see admission.hpp).
     match(const match_config& config, const world::world_config& world_config, logger log = {},
           token_check check_token = {});
-    // Its connections' records point into it: it neither moves nor copies, and it clears them
-    // when it ends.
+    // Its connections' records point into it: it neither moves nor copies, and when it ends it
+    // clears them in the connections still there.
     ~match();
     match(const match&) = delete;
     match& operator=(const match&) = delete;

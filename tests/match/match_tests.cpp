@@ -1,6 +1,7 @@
 // The match without sockets: connections are recorders of what they were sent.
 #include <catch2/catch.hpp>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "match/drive.hpp"
@@ -377,4 +378,19 @@ TEST_CASE("a connection's record lives as long as its match holds it, and names 
     }
     // The match ended while holding the connection: its record went with it.
     CHECK(taken_over.record == nullptr);
+}
+
+TEST_CASE("a match that ends after a connection it holds writes nothing to it, and a copy holds no record", "[match]") {
+    auto gone_first = std::make_unique<fake_client>();
+    fake_client stays;
+    {
+        match::match g(make_config(), world::asteroids_preset());
+        REQUIRE(join(g, *gone_first, hello(), "key-g") != 0);
+        REQUIRE(join(g, stays, hello(), "key-s") != 0);
+        const fake_client copy = stays;
+        CHECK(copy.record == nullptr);  // a new connection, held by no match
+        CHECK(stays.record != nullptr);
+        gone_first.reset();  // freed while the match holds it: the match must not write to it (ASan)
+    }
+    CHECK(stays.record == nullptr);
 }
