@@ -25,9 +25,7 @@ pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 settle=${E2E_SETTLE:-3}
 ticks_per_s=$(getconf CLK_TCK)
-cpu_ticks() {  # utime + stime of a process, in clock ticks
-  awk '{ print $14 + $15 }' "/proc/$1/stat"
-}
+. "$here/server_load.sh"
 
 # run_arena N LABEL [SERVER_FLAGS] [BOTS_FLAGS]: one run; leaves $work/LABEL.server.json and
 # $work/LABEL.bots.json. The flag lists are single words split on spaces.
@@ -110,8 +108,7 @@ rooms_runs=${E2E_ROOMS_RUNS:-1}
 part rooms || exit 0
 echo
 echo "## Many matches in one process: $rooms_bots clients in matches of 8, 60 inputs/s each, every body of a match in view, server on CPU 1"
-echo '{"modes": [{"name": "room8", "preset": "asteroids", "rules": "sandbox", "max_players": 8,
-  "world": {"rocks": {"count": 0}}}]}' > "$work/modes.json"
+write_room_mode "$work/modes.json" 8
 for run in $(seq "$rooms_runs"); do
   echo >&2
   echo "running Arena with $rooms_bots bots in matches of 8 (run $run of $rooms_runs)..." >&2

@@ -26,10 +26,10 @@ room_size=${FLOOR_ROOM_SIZE:-0}
 rounds=${FLOOR_ROUNDS:-1}
 work=$(mktemp -d /tmp/arena-floor.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+. "$(dirname "$0")/server_load.sh"
 server_mode=(); bots_mode=()
 if [ "$room_size" -gt 0 ]; then
-  echo "{\"modes\": [{\"name\": \"room$room_size\", \"preset\": \"asteroids\", \"rules\": \"sandbox\",
-    \"max_players\": $room_size, \"world\": {\"rocks\": {\"count\": 0}}}]}" > "$work/modes.json"
+  write_room_mode "$work/modes.json" "$room_size"
   server_mode=(--modes "$work/modes.json" --threads 1 --max-matches 1000)
   bots_mode=(--mode "room$room_size")
 fi
@@ -37,9 +37,6 @@ pin_server=(); pin_bots=()
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 ticks_per_s=$(getconf CLK_TCK)
 
-cpu_ticks() {  # utime + stime of a process, in clock ticks
-  awk '{ print $14 + $15 }' "/proc/$1/stat"
-}
 tick_seconds() {  # the server's world-step seconds so far, from its /metrics histogram
   python3 - "$1" <<'PY'
 import sys, urllib.request
