@@ -86,26 +86,29 @@ class match;
 
 // A player of a match, connected or waiting in the reconnect grace.
 struct match_player {
+    // First what an Input touches (the connection, the input ring, the acknowledgement at the
+    // head of snapshots): the first two cache lines, which the transport fetches ahead.
     connection* who = nullptr;  // nullptr while disconnected within the grace period
-    std::string name;
-    std::string identity;
-    uint32_t disconnected_at_tick = 0;
-    world::body_id body_id;  // none (0) until spawned
     input_buffer inputs;
     snapshot_client snapshots;  // delta baselines and the client's acknowledgement
+    world::body_id body_id;     // none (0) until spawned
     uint32_t game_sent = 0;     // BodyState clients: the game's version the last snapshot brought (game_feed)
     uint32_t events_from = 0;   // the game's version at connection: the events it hears come after it
+    uint32_t disconnected_at_tick = 0;
+    std::string name;
+    std::string identity;
 };
 
 // What a match keeps of a connection it holds; the connection points to it (connection::record).
 struct client_record {
-    const match* owner = nullptr;  // the match that holds the connection
+    // First what an Input reads (the first two cache lines, which the transport fetches ahead).
+    const match* owner = nullptr;    // the match that holds the connection
+    match_player* player = nullptr;  // the player it plays, while the match has it (not a spectator's)
+    client_standing standing;
+    world::player_id player_id;    // none (0) until the Hello is accepted
+    bool connection_gone = false;  // the connection ended before the match forgot it (~connection)
     uint64_t serial = 0;           // order of connection: a fixed order for what is done to every client
     std::string address;           // the peer's address without its port
-    client_standing standing;
-    world::player_id player_id;      // none (0) until the Hello is accepted
-    match_player* player = nullptr;  // the player it plays, while the match has it (not a spectator's)
-    bool connection_gone = false;    // the connection ended before the match forgot it (~connection)
 };
 
 class match {

@@ -92,15 +92,16 @@ bool match::on_hello(connection& c, client& cl, const protocol::hello_msg& hello
     if (std::get<join_kind>(verdict) == join_kind::new_player) {
         if (players_.size() >= config_.admission.max_players) give_up_oldest_in_grace();
         id = world::player_id{next_player_id_++};
-        players_.emplace(id, player{&c,
-                                    admitted.name,
-                                    admitted.identity,
-                                    0,
-                                    {},
-                                    input_buffer(config_.input_buffer),
-                                    snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget()),
-                                    0,
-                                    game_.version()});
+        players_.emplace(
+            id, player{.who = &c,
+                       .inputs = input_buffer(config_.input_buffer),
+                       .snapshots = snapshot_client(baseline_ring(), hello.delta_snapshots, c.snapshot_budget()),
+                       .body_id = {},
+                       .game_sent = 0,
+                       .events_from = game_.version(),
+                       .disconnected_at_tick = 0,
+                       .name = admitted.name,
+                       .identity = admitted.identity});
         pending_joins_.push_back(id);
     } else {
         // The same player again: a reconnection, or a new connection taking over.

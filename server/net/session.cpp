@@ -30,9 +30,9 @@ std::string describe(const boost::asio::ip::tcp::socket& socket) {
 }  // namespace
 
 session::session(boost::asio::ip::tcp::socket socket, tcp_transport& owner, uint64_t id)
-    : executor_(socket.get_executor()),
+    : owner_(owner),
+      executor_(socket.get_executor()),
       accepted_(std::move(socket)),
-      owner_(owner),
       id_(id),
       peer_(describe(accepted_)),
       output_(owner.host().options().max_control_frames),

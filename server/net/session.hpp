@@ -77,26 +77,28 @@ private:
     void drain_until_closed();
     void close_now();
 
+    // First what the tick's read pass touches (with the connection's match key and record
+    // before them: the first two cache lines, which the transport fetches ahead).
+    int fd_ = -1;
+    bool closing_ = false;
+    bool closed_ = false;
+    bool flush_requested_ = false;
+    bool waiting_for_room_ = false;
+    tcp_transport& owner_;
+    protocol::frame_reader reader_;
     boost::asio::any_io_executor executor_;
     boost::asio::ip::tcp::socket accepted_;  // until start(): then its descriptor is fd_
-    int fd_ = -1;
-    tcp_transport& owner_;
     uint64_t id_;
     std::string peer_;
-    protocol::frame_reader reader_;
     bounded_output output_;
     // The batch being written: the rest of take_all()'s frames, as the kernel wants them.
     std::vector<iovec> writing_;
     size_t writing_from_ = 0;  // first entry of writing_ not yet written in full
     size_t writing_bytes_ = 0;
     size_t writing_frames_ = 0;
-    bool flush_requested_ = false;
-    bool waiting_for_room_ = false;
     // fd_ in the epoll set while a write waits for room, or while a half-closed session waits
     // for the client's end (released, not closed, afterwards).
     std::optional<boost::asio::posix::stream_descriptor> room_;
-    bool closing_ = false;
-    bool closed_ = false;
     boost::asio::steady_timer linger_;  // bounds how long a closing session may flush and drain
 };
 

@@ -82,14 +82,23 @@ void tcp_transport::read_before_tick() {
 }
 
 void tcp_transport::fetch_ahead(size_t i) const {
-    // Each stage needs the one before it in the cache: the session three ahead, the match's
-    // record of the one two ahead (fetched a stage ago), the player of the next one.
+    // Each stage needs the one before it in the cache: the session four ahead, the match's
+    // record of the one three ahead (fetched a stage ago), the player of the one two ahead, and
+    // the slot of the next one's input ring that its Input will be written to. Sessions,
+    // records and players keep what a read and an Input touch in their first two cache lines
+    // (session.hpp, match.hpp).
     const auto at = [&](size_t k) {
         return k < sessions_.size() ? sessions_[k].get() : nullptr;
     };
-    if (const session* s = at(i + 3)) __builtin_prefetch(s);
-    if (const session* s = at(i + 2); s && s->record) __builtin_prefetch(s->record);
-    if (const session* s = at(i + 1); s && s->record && s->record->player) __builtin_prefetch(s->record->player);
+    const auto fetch_two_lines = [](const void* p) {
+        __builtin_prefetch(p);
+        __builtin_prefetch(static_cast<const char*>(p) + 64);
+    };
+    if (const session* s = at(i + 3)) fetch_two_lines(s);
+    if (const session* s = at(i + 2); s && s->record) fetch_two_lines(s->record);
+    if (const session* s = at(i + 1); s && s->record && s->record->player) fetch_two_lines(s->record->player);
+    if (const session* s = at(i); s && s->record && s->record->player)
+        __builtin_prefetch(s->record->player->inputs.next_slot(), 1);
 }
 
 void tcp_transport::request_flush(std::shared_ptr<session> s) {

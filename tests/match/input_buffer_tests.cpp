@@ -2,6 +2,8 @@
 
 #include "server/match/input_buffer.hpp"
 
+#include <deque>
+
 using namespace arena::match;
 
 TEST_CASE("each tick consumes one input in order", "[match][input]") {
@@ -31,4 +33,42 @@ TEST_CASE("a full buffer drops its oldest input and counts an overflow", "[match
     CHECK(buffer.overflows() == 3);
     buffer.consume();
     CHECK(buffer.last_consumed_sequence() == 4);
+}
+
+TEST_CASE("the ring keeps order across many laps of pushes and consumes", "[match][input]") {
+    // Against a plain queue: capacity 3, pushes and consumes in an irregular pattern, so the
+    // oldest input sits at every slot of the ring, with overflows and underruns on the way.
+    input_buffer buffer(3);
+    std::deque<uint32_t> model;
+    uint64_t overflows = 0, underruns = 0;
+    uint32_t last = 0, next = 1;
+    bool consumed_any = false;
+    for (int step = 0; step < 500; ++step) {
+        const int pushes = (step * 7) % 5;  // 0 to 4 a step: sometimes more than the ring holds
+        for (int k = 0; k < pushes; ++k) {
+            buffer.push({next, {}});
+            if (model.size() == 3) {
+                model.pop_front();
+                ++overflows;
+            }
+            model.push_back(next++);
+        }
+        REQUIRE(buffer.waiting() == model.size());
+        const int consumes = (step * 3) % 4;
+        for (int k = 0; k < consumes; ++k) {
+            buffer.consume();
+            if (model.empty()) {
+                if (consumed_any) ++underruns;
+            } else {
+                last = model.front();
+                model.pop_front();
+                consumed_any = true;
+            }
+            REQUIRE(buffer.last_consumed_sequence() == last);
+        }
+    }
+    CHECK(buffer.overflows() == overflows);
+    CHECK(buffer.underruns() == underruns);
+    CHECK(overflows > 0);
+    CHECK(underruns > 0);
 }
