@@ -82,11 +82,11 @@ void tcp_transport::read_before_tick() {
 }
 
 void tcp_transport::fetch_ahead(size_t i) const {
-    // Each stage needs the one before it in the cache: the session four ahead, the match's
-    // record of the one three ahead (fetched a stage ago), the player of the one two ahead, and
-    // the slot of the next one's input ring that its Input will be written to. Sessions,
-    // records and players keep what a read and an Input touch in their first two cache lines
-    // (session.hpp, match.hpp).
+    // Each stage needs the one before it in the cache: the session three ahead, the match's
+    // record of the one two ahead (fetched a stage ago), the player of the next one, and the
+    // slot of this one's input ring that its Input will be written to once the kernel has
+    // served its recv. Sessions, records and players keep what a read and an Input touch in
+    // their first two cache lines (session.hpp, match.hpp).
     const auto at = [&](size_t k) {
         return k < sessions_.size() ? sessions_[k].get() : nullptr;
     };
