@@ -198,6 +198,15 @@ test('the page plays: joins, thrusts, fires, draws, and its HUD shows the server
   assert.equal(await eye.evaluate(() => window.arenaPage.bye), null, 'its keys send nothing the server refuses');
   assert.equal(await metric('arena_spectators_connected'), 1);
 
+  // The probe's bullets still in flight may score after its HUD was last drawn (its tab has
+  // been behind the spectator's): back in front, it waits until none is left in its view and
+  // draws a few frames more, so the score cannot change between its HUD and the server's end.
+  await probe.bringToFront();
+  await until('the probe\'s bullets gone', () => probe.evaluate(() =>
+    !window.arenaPage.client.stateAt(performance.now()).bodies.some((b) => b.kind === 3)));
+  const framesThen = await probe.evaluate(() => window.arenaPage.frames);
+  await until('frames drawn since', () => probe.evaluate((n) => window.arenaPage.frames > n + 10, framesThen));
+
   // The server ends the match; the HUD's score is the server's, as --stats-json has it.
   proc.kill('SIGTERM');
   const bye = await until('the Bye', () => probe.evaluate(() => window.arenaPage.bye));
