@@ -52,20 +52,19 @@ port_of() {  # PORT of the line "PREFIX HOST:PORT" in FILE, waiting up to 10 s
   echo "$p"
 }
 
-snapshot_bytes=""
-i=0
-for round in $(seq "$rounds"); do
-rows=()
-for bin in "$@"; do
-  i=$((i + 1))
+# measure_server BIN N: BIN's arena-server under the load (its files $work/sN.*, the bots'
+# $work/bN.json); prints "steady ticks whole bytes": CPU s per s over the steady state, the
+# ticks' seconds per s within it, the whole run's CPU s per s, and the mean snapshot's bytes.
+measure_server() {
+  local bin=$1 n=$2 server port http bots cpu0 cpu1 step0 step1 t0 t1
   "${pin_server[@]}" "$bin/arena-server" --port 0 --http-port 0 --max-players "$clients" \
     --max-connections $((2 * clients + 16)) --max-pending-handshakes "$clients" --view-radius 0 --rules sandbox \
-    "${server_mode[@]}" --stats-json "$work/s$i.json" > "$work/s$i.out" 2> "$work/s$i.log" &
+    "${server_mode[@]}" --stats-json "$work/s$n.json" > "$work/s$n.out" 2> "$work/s$n.log" &
   server=$!
-  port=$(port_of "$work/s$i.out" "listening on")
-  http=$(port_of "$work/s$i.out" "http listening on")
+  port=$(port_of "$work/s$n.out" "listening on")
+  http=$(port_of "$work/s$n.out" "http listening on")
   "${pin_bots[@]}" "$tools/arena-bots" --port "$port" --bots "$clients" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet "${bots_mode[@]}" --json "$work/b$i.json" > /dev/null 2>&1 &
+    --behavior mixed --seed 1 --quiet "${bots_mode[@]}" --json "$work/b$n.json" > /dev/null 2>&1 &
   bots=$!
   sleep "$settle"
   cpu0=$(cpu_ticks "$server"); step0=$(tick_seconds "$http"); t0=$(date +%s.%N)
@@ -73,7 +72,7 @@ for bin in "$@"; do
   cpu1=$(cpu_ticks "$server"); step1=$(tick_seconds "$http"); t1=$(date +%s.%N)
   wait "$bots" || true
   kill -TERM "$server"; wait "$server" || true
-  read -r steady ticks whole bytes < <(python3 - "$work/s$i.json" "$work/b$i.json" "$cpu0" "$cpu1" "$step0" "$step1" "$t0" "$t1" "$ticks_per_s" <<'PY'
+  python3 - "$work/s$n.json" "$work/b$n.json" "$cpu0" "$cpu1" "$step0" "$step1" "$t0" "$t1" "$ticks_per_s" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
 cpu0, cpu1, step0, step1, t0, t1, hz = map(float, sys.argv[3:])
@@ -87,27 +86,42 @@ size = s["delta_bytes"] / s["delta_frames"] if s["delta_frames"] else \
 print((cpu1 - cpu0) / hz / window, (step1 - step0) / window,
       (p["cpu_user_s"] + p["cpu_system_s"]) / j["duration_s"], round(size))
 PY
-)
-  [ -n "$snapshot_bytes" ] || snapshot_bytes=$bytes
-  rows+=("$bin/arena-server $steady $ticks $whole $bytes")
-done
+}
 
-[ "$rounds" -eq 1 ] || printf '\nRound %s of %s\n\n' "$round" "$rounds"
-taskset -c 0,1 "$tools/arena-bench-tcp-floor" --clients "$clients" --seconds "$((seconds - settle - 1))" \
-  --snapshot-bytes "$snapshot_bytes" > "$work/floor.json"
-floor=$(python3 -c 'import json,sys
+floor_cpu() {  # floor_cpu BYTES: the floor's CPU s per s with BYTES-byte snapshots
+  taskset -c 0,1 "$tools/arena-bench-tcp-floor" --clients "$clients" --seconds "$((seconds - settle - 1))" \
+    --snapshot-bytes "$1" > "$work/floor.json"
+  python3 -c 'import json,sys
 for line in open(sys.argv[1]):
     line=line.strip()
     if line.startswith("{"): j=json.loads(line)
-print(j["server_cpu_s_per_s"])' "$work/floor.json")
+print(j["server_cpu_s_per_s"])' "$work/floor.json"
+}
 
-printf '| server | CPU s per s (steady) | / floor | of which ticks (world step, snapshots) | the rest (transport, admission, timers) | rest / floor | whole run | snapshot B |\n'
-printf '|---|---:|---:|---:|---:|---:|---:|---:|\n| arena-bench-tcp-floor | %.3f | 1.00 | | | | | %s |\n' "$floor" "$snapshot_bytes"
-for row in "${rows[@]}"; do
-  read -r name steady ticks whole bytes <<< "$row"
-  python3 -c "import sys
+print_table() {  # print_table FLOOR BYTES ROW...: one round's table (a row: "NAME steady ticks whole bytes")
+  local floor=$1 bytes=$2 row name steady ticks whole size
+  shift 2
+  printf '| server | CPU s per s (steady) | / floor | of which ticks (world step, snapshots) | the rest (transport, admission, timers) | rest / floor | whole run | snapshot B |\n'
+  printf '|---|---:|---:|---:|---:|---:|---:|---:|\n| arena-bench-tcp-floor | %.3f | 1.00 | | | | | %s |\n' "$floor" "$bytes"
+  for row in "$@"; do
+    read -r name steady ticks whole size <<< "$row"
+    python3 -c "import sys
 n, s, t, w, b, f = sys.argv[1], *map(float, sys.argv[2:])
 print(f'| {n} | {s:.3f} | {s/f:.2f} | {t:.3f} | {s-t:.3f} | {(s-t)/f:.2f} | {w:.3f} | {b:.0f} |')" \
-    "$name" "$steady" "$ticks" "$whole" "$bytes" "$floor"
-done
+      "$name" "$steady" "$ticks" "$whole" "$size" "$floor"
+  done
+}
+
+snapshot_bytes=""
+i=0
+for round in $(seq "$rounds"); do
+  rows=()
+  for bin in "$@"; do
+    i=$((i + 1))
+    read -r steady ticks whole bytes < <(measure_server "$bin" "$i")
+    [ -n "$snapshot_bytes" ] || snapshot_bytes=$bytes
+    rows+=("$bin/arena-server $steady $ticks $whole $bytes")
+  done
+  [ "$rounds" -eq 1 ] || printf '\nRound %s of %s\n\n' "$round" "$rounds"
+  print_table "$(floor_cpu "$snapshot_bytes")" "$snapshot_bytes" "${rows[@]}"
 done
