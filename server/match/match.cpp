@@ -60,8 +60,7 @@ match::match(const match_config& config, const world::world_config& world_config
 match::~match() {
     // A connection may outlive the match it was in (its transport closes it later): it must
     // not keep a record that is gone. One that ended first said so (~connection).
-    for (auto& [c, cl] : clients_)
-        if (!cl.connection_gone) c->record = nullptr;
+    for (const auto& entry : clients_) unlink(entry);
 }
 
 uint32_t match::snapshot_interval() const {
@@ -176,7 +175,7 @@ void match::forget(client_map::iterator it, const close_cause& cause) {
     const connection* c = it->first;
     const world::player_id player_id = it->second.player_id;
     if (it->second.standing.at == client_standing::stage::awaiting_hello) --awaiting_hello_;
-    if (!it->second.connection_gone) c->record = nullptr;
+    unlink(*it);
     clients_.erase(it);
     if (!player_id) return;
     if (auto s = spectators_.find(player_id); s != spectators_.end()) {

@@ -235,6 +235,11 @@ private:
     player_map::const_iterator find_identity(const std::string& identity) const;
     // Forgets `it`: counts why it closed, and its player leaves or waits for a reconnection.
     void forget(client_map::iterator it, const close_cause& cause);
+    // The connection of `entry` no longer points to its record, unless it is gone already
+    // (~connection marked the record): nothing is written to a connection that ended first.
+    static void unlink(const client_map::value_type& entry) {
+        if (!entry.second.connection_gone) entry.first->record = nullptr;
+    }
     void leave(player_map::iterator it, const close_cause& cause);
     void spawn_pending(const std::vector<world::player_id>& owners, const std::vector<world::body_id>& bodies);
     void send_welcome(world::player_id id, player& p);

@@ -39,7 +39,7 @@ void match::release(connection& c) {
     auto it = clients_.find(&c);
     if (it == clients_.end() || it->second.standing.at != client_standing::stage::awaiting_hello) return;
     --awaiting_hello_;
-    if (!it->second.connection_gone) c.record = nullptr;
+    unlink(*it);
     clients_.erase(it);
 }
 
