@@ -35,10 +35,8 @@ run_arena() {
   "${pin_server[@]}" "$bin/arena-server" --port 0 --max-players "$n" --max-connections $((2 * n + 16)) \
     --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 --rules sandbox "${server_flags[@]}" \
     --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
-  local server=$! port=""
-  for _ in $(seq 100); do
-    port=$(sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$work/$label.out"); [ -n "$port" ] && break; sleep 0.1
-  done
+  local server=$! port
+  port=$(port_of "$work/$label.out" "listening on")
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   "${pin_bots[@]}" "$bin/arena-bots" --port "$port" --bots "$n" --duration "$seconds" --connect-rate 500 \
     --behavior mixed --seed 1 --quiet "${bots_flags[@]}" --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 &

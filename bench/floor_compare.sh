@@ -44,13 +44,6 @@ text = urllib.request.urlopen(f"http://127.0.0.1:{sys.argv[1]}/metrics", timeout
 print(next(l.split()[1] for l in text.splitlines() if l.startswith("arena_tick_duration_seconds_sum")))
 PY
 }
-port_of() {  # PORT of the line "PREFIX HOST:PORT" in FILE, waiting up to 10 s
-  local p=""
-  for _ in $(seq 100); do
-    p=$(sed -n "s/^$2 .*:\([0-9]*\)\$/\1/p" "$1"); [ -n "$p" ] && break; sleep 0.1
-  done
-  echo "$p"
-}
 
 # measure_server BIN N: BIN's arena-server under the load (its files $work/sN.*, the bots'
 # $work/bN.json); prints "steady ticks whole bytes": CPU s per s over the steady state, the

@@ -26,6 +26,7 @@ priority=${HITS_NICE:--10}
 link_name=hits
 link_net=10.78.0
 . "$here/netns_link.sh"
+. "$here/server_load.sh"
 
 # run RTT_MS COMPENSATION_MS LABEL: one Asteroids server and its hunters, each in its namespace.
 run() {
@@ -37,10 +38,8 @@ run() {
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --max-players "$bots" --duration $((seconds + 30)) --preset asteroids --lag-compensation-ms "$compensation" \
     > "$work/$label.out" 2> "$work/$label.log" &
-  local server=$! port=""
-  for _ in $(seq 100); do
-    port=$(sed -n "s/^udp listening on .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true); [ -n "$port" ] && break; sleep 0.1
-  done
+  local server=$! port
+  port=$(port_of "$work/$label.out" "udp listening on")
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   ip netns exec "$bots_ns" nice -n "$priority" "$bin/arena-bots" --transport udp --host "$server_address" --port "$port" \
     --bots "$bots" --behavior hunter --duration "$seconds" --connect-rate 100 --seed 1 --quiet --json "$work/$label.json" \

@@ -33,6 +33,7 @@ priority=${LOSS_NICE:--10}
 link_name=loss
 link_net=10.77.0
 . "$here/netns_link.sh"
+. "$here/server_load.sh"
 
 # drop_share NAMESPACE: drops `permille` of the packets arriving in NAMESPACE (nftables).
 drop_share() {
@@ -55,11 +56,9 @@ run() {
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --max-players "$bots" --duration $((seconds + 30)) --rules sandbox "${copies[@]}" --stats-json "$work/$label.stats.json" \
     > "$work/$label.out" 2> "$work/$label.log" &
-  local server=$! port=""
+  local server=$! port
   local prefix="listening on"; [ "$transport" = udp ] && prefix="udp listening on"
-  for _ in $(seq 100); do
-    port=$(sed -n "s/^$prefix .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true); [ -n "$port" ] && break; sleep 0.1
-  done
+  port=$(port_of "$work/$label.out" "$prefix")
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   ip netns exec "$bots_ns" nice -n "$priority" "$bin/arena-bots" --transport "$transport" --host "$server_address" --port "$port" \
     --bots "$bots" --duration "$seconds" --connect-rate 100 --seed 1 --quiet --json "$work/$label.json" \

@@ -26,6 +26,7 @@ priority=${PAGE_NICE:--10}
 link_name=page
 link_net=10.79.0
 . "$here/netns_link.sh"
+. "$here/server_load.sh"
 
 # run COMPENSATION_MS LABEL: one Asteroids server (its page from build/web, beside bin/), its
 # hunters and the page, the server in its namespace and the players in theirs.
@@ -38,13 +39,9 @@ run() {
   ip netns exec "$server_ns" nice -n "$priority" "$bin/arena-server" --bind "$server_address" --port 0 --udp-port 0 \
     --http-port 0 --max-players $((bots + 1)) --duration $((seconds + 60)) --preset asteroids \
     --lag-compensation-ms "$compensation" > "$work/$label.out" 2> "$work/$label.log" &
-  local server=$! udp="" http=""
-  for _ in $(seq 100); do
-    udp=$(sed -n "s/^udp listening on .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true)
-    http=$(sed -n "s/^http listening on .*:\([0-9]*\)\$/\1/p" "$work/$label.out" || true)
-    [ -n "$udp" ] && [ -n "$http" ] && break
-    sleep 0.1
-  done
+  local server=$! udp http
+  udp=$(port_of "$work/$label.out" "udp listening on")
+  http=$(port_of "$work/$label.out" "http listening on")
   [ -n "$udp" ] && [ -n "$http" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
   ip netns exec "$bots_ns" nice -n "$priority" "$bin/arena-bots" --transport udp --host "$server_address" --port "$udp" \
     --bots "$bots" --behavior hunter --duration $((seconds + 10)) --connect-rate 100 --seed 1 --quiet \

@@ -1,4 +1,5 @@
-# Sourced by e2e.sh and floor_compare.sh: what both need to load a server the same way.
+# Sourced by the bench scripts (e2e.sh, floor_compare.sh, hits.sh, loss.sh, page_hits.sh): what
+# they need to start and load a server the same way.
 
 # utime + stime of a process, in clock ticks (getconf CLK_TCK a second).
 cpu_ticks() {
@@ -10,4 +11,15 @@ cpu_ticks() {
 write_room_mode() {
   echo "{\"modes\": [{\"name\": \"room$2\", \"preset\": \"asteroids\", \"rules\": \"sandbox\", \"max_players\": $2,
   \"world\": {\"rocks\": {\"count\": 0}}}]}" > "$1"
+}
+
+# port_of FILE PREFIX: the port of the line "PREFIX HOST:PORT" a server prints to FILE (its
+# stdout), waiting up to 10 s for it; empty when it never came. PREFIX "listening on" (TCP),
+# "udp listening on", "http listening on".
+port_of() {
+  local p=""
+  for _ in $(seq 100); do
+    p=$(sed -n "s/^$2 .*:\([0-9]*\)\$/\1/p" "$1" 2>/dev/null || true); [ -n "$p" ] && break; sleep 0.1
+  done
+  echo "$p"
 }
