@@ -21,11 +21,10 @@ work=$(mktemp -d /tmp/arena-bench-e2e.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 parts=" ${E2E_PARTS:-one colyseus rooms} "
 part() { [[ "$parts" == *" $1 "* ]]; }
-pin_server=(); pin_bots=()
-if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 settle=${E2E_SETTLE:-3}
 ticks_per_s=$(getconf CLK_TCK)
 . "$here/server_load.sh"
+pin_to_cpus
 
 # run_arena N LABEL [SERVER_FLAGS] [BOTS_FLAGS]: one run; leaves $work/LABEL.server.json and
 # $work/LABEL.bots.json. The flag lists are single words split on spaces.

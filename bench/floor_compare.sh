@@ -33,8 +33,7 @@ if [ "$room_size" -gt 0 ]; then
   server_mode=(--modes "$work/modes.json" --threads 1 --max-matches 1000)
   bots_mode=(--mode "room$room_size")
 fi
-pin_server=(); pin_bots=()
-if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
+pin_to_cpus
 ticks_per_s=$(getconf CLK_TCK)
 
 tick_seconds() {  # the server's world-step seconds so far, from its /metrics histogram

@@ -6,6 +6,19 @@ cpu_ticks() {
   awk '{ print $14 + $15 }' "/proc/$1/stat"
 }
 
+# Nanoseconds a process has spent on a CPU (its threads' sum): exact, where the clock ticks of
+# cpu_ticks are samples.
+cpu_ns() {
+  awk '{ print $1 }' "/proc/$1/schedstat"
+}
+
+# pin_to_cpus: sets pin_server (taskset -c 1) and pin_bots (taskset -c 0), the prefixes that keep
+# a server and its clients on CPUs of their own; both empty without taskset or a second CPU.
+pin_to_cpus() {
+  pin_server=(); pin_bots=()
+  if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
+}
+
 # write_room_mode FILE N: a --modes file with one mode, "roomN": the asteroids preset without
 # rocks, sandbox rules, N seats (the many-matches load).
 write_room_mode() {
