@@ -18,12 +18,8 @@ compensations=${HITS_COMPENSATION_MS:-250 0}
 seconds=${HITS_SECONDS:-20}
 bots=${HITS_BOTS:-16}
 [ "$(id -u)" = 0 ] || { echo "bench-hits: needs root (ip netns)" >&2; exit 1; }
-keep=${HITS_WORK:-}
-if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-hits.XXXXXX); fi
-# The link, the server and the bots run ahead of anything else on a shared machine (a compiler
-# at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
-priority=${HITS_NICE:--10}
 link_name=hits
+env_prefix=HITS
 link_net=10.78.0
 . "$here/netns_link.sh"
 . "$here/server_load.sh"

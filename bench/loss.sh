@@ -25,12 +25,8 @@ bots=${LOSS_BOTS:-16}
 transports=${LOSS_TRANSPORTS:-tcp udp1 udp udp2}
 [ "$(id -u)" = 0 ] || { echo "bench-loss: needs root (ip netns, nft)" >&2; exit 1; }
 command -v nft >/dev/null || { echo "bench-loss: needs nft (apt-get install nftables)" >&2; exit 1; }
-keep=${LOSS_WORK:-}
-if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-loss.XXXXXX); fi
-# The link, the server and the bots run ahead of anything else on a shared machine (a compiler
-# at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as lag).
-priority=${LOSS_NICE:--10}
 link_name=loss
+env_prefix=LOSS
 link_net=10.77.0
 . "$here/netns_link.sh"
 . "$here/server_load.sh"

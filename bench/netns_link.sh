@@ -1,10 +1,18 @@
-# Sourced by bench/loss.sh and bench/hits.sh: two network namespaces of a run's own, the
-# server's and the bots', joined by a point-to-point link (arena-link-delay) that holds every
-# packet in the kernel's packet path. Before sourcing, set: bin (the programs), work (a folder),
-# keep (non-empty: work is kept), priority (the link's nice value), link_name (in the namespaces'
-# names) and link_net (the /30's first three octets, one per script, so that two benches never
-# share addresses). Defines server_ns, bots_ns, server_address, bots_address, drop_namespaces
-# and link_connect; at exit removes the namespaces, and work unless kept.
+# Sourced by bench/loss.sh, bench/hits.sh and bench/page_hits.sh: two network namespaces of a
+# run's own, the server's and the bots', joined by a point-to-point link (arena-link-delay) that
+# holds every packet in the kernel's packet path. Before sourcing, set: bin (the programs),
+# link_name (in the namespaces' and the work folder's names), link_net (the /30's first three
+# octets, one per script, so that two benches never share addresses) and env_prefix (the
+# script's environment: PREFIX_WORK, a folder that keeps each run's files, else a temporary one
+# removed at exit; PREFIX_NICE, the nice value of the link, the server and the bots, -10: a
+# compiler at nice 0 would otherwise hold a packet or a tick back by tens of ms and show as
+# lag). Defines work, keep, priority, server_ns, bots_ns, server_address, bots_address,
+# drop_namespaces and link_connect; at exit removes the namespaces, and work unless kept.
+keep_variable=${env_prefix}_WORK
+nice_variable=${env_prefix}_NICE
+keep=${!keep_variable:-}
+if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d "/tmp/arena-bench-$link_name.XXXXXX"); fi
+priority=${!nice_variable:--10}
 server_ns=arena-$link_name-server-$$
 bots_ns=arena-$link_name-bots-$$
 server_address=$link_net.1

@@ -20,10 +20,8 @@ chromium=$(command -v chromium || true)
 [ -n "$chromium" ] || { echo "bench-page-hits: needs chromium (make deps)" >&2; exit 1; }
 [ -d "$node_path/puppeteer-core" ] || { echo "bench-page-hits: no puppeteer-core in $node_path (make build)" >&2; exit 1; }
 node_path=$(cd "$node_path" && pwd)
-keep=${PAGE_WORK:-}
-if [ -n "$keep" ]; then mkdir -p "$keep"; work=$keep; else work=$(mktemp -d /tmp/arena-bench-page.XXXXXX); fi
-priority=${PAGE_NICE:--10}
 link_name=page
+env_prefix=PAGE
 link_net=10.79.0
 . "$here/netns_link.sh"
 . "$here/server_load.sh"
