@@ -6,10 +6,11 @@
 # Both servers run at once on CPU 1, each with its own arena-bots on CPU 0 (the many-matches
 # load: CLIENTS clients joining matches of ROOM_SIZE, every body in view, one tick thread), so
 # whatever the machine does in the window it does to both. Each server's CPU is read from
-# /proc/PID/schedstat (nanoseconds on a CPU, exact, where /proc/PID/stat counts clock ticks)
-# over the same window. A round runs the pair twice, A started first and then B, so that the
-# order of their starts (measured: a few per cent) cancels; the figure is B's CPU over A's,
-# the geometric mean of the round's two runs.
+# /proc/PID/task/*/schedstat (nanoseconds on a CPU, exact, where /proc/PID/stat counts clock
+# ticks) over the same window. A round runs the pair twice, A started first and then B, so that
+# whatever favours one start order cancels; the figure is B's CPU over A's, the geometric mean
+# of the round's two runs. The same binary as A and B gave 0.92 to 1.02 a round
+# (bench/README.md, "Two builds at once"): trust a change only when several rounds agree.
 #   bench/pair_compare.sh BOTS_BIN SERVER_BIN_A SERVER_BIN_B   (folders: arena-bots', each arena-server)
 # Env: PAIR_SECONDS (30 per run), PAIR_ROUNDS (2), PAIR_CLIENTS (400 per server),
 # PAIR_ROOM_SIZE (8), PAIR_SETTLE (4: s after the bots start before the window opens).
@@ -21,7 +22,7 @@ clients=${PAIR_CLIENTS:-400}
 room_size=${PAIR_ROOM_SIZE:-8}
 settle=${PAIR_SETTLE:-4}
 work=$(mktemp -d /tmp/arena-pair.XXXXXX)
-trap 'rm -rf "$work"' EXIT
+trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 . "$(dirname "$0")/server_load.sh"
 write_room_mode "$work/modes.json" "$room_size"
 pin_to_cpus

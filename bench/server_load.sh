@@ -6,10 +6,10 @@ cpu_ticks() {
   awk '{ print $14 + $15 }' "/proc/$1/stat"
 }
 
-# Nanoseconds a process has spent on a CPU (its threads' sum): exact, where the clock ticks of
-# cpu_ticks are samples.
+# Nanoseconds a process's running threads have spent on a CPU, summed: exact, where the clock
+# ticks of cpu_ticks are samples (a thread that has ended no longer counts).
 cpu_ns() {
-  awk '{ print $1 }' "/proc/$1/schedstat"
+  cat /proc/"$1"/task/*/schedstat | awk '{ sum += $1 } END { printf "%d\n", sum }'
 }
 
 # pin_to_cpus: sets pin_server (taskset -c 1) and pin_bots (taskset -c 0), the prefixes that keep
