@@ -27,13 +27,15 @@ public:
         setup_ = &setup;
         folder_ = cli::record_is_folder(setup.record);
         if (folder_) std::filesystem::create_directories(setup.record);
-        bool opened = true;
+        // Called for the matches there now (the default one) and for every match started later:
+        // it must capture nothing of this call's. A match that cannot be recorded is said by
+        // start(); the default match's file must open, or the server does not start.
         host.matches().observe(
-            [this, &opened](host::hosted_match& m) {
-                if (m.key == 0 || folder_) opened = start(m) && opened;
+            [this](host::hosted_match& m) {
+                if (m.key == 0 || folder_) (void)start(m);
             },
             [this](host::hosted_match& m, const std::string&) { finish(m.key, *m.game); });
-        if (!opened) return false;
+        if (!recordings_.contains(0)) return false;
         host.on_shutdown = [this, &host] {
             for (const auto& [key, m] : host.matches().matches()) finish(key, *m.game);
         };
