@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <system_error>
 
 #include "protocol/snapshot.hpp"
 #include "server/host/host.hpp"
@@ -26,7 +27,15 @@ public:
     bool open(host::process_host& host, const cli::server_setup& setup) {
         setup_ = &setup;
         folder_ = cli::record_is_folder(setup.record);
-        if (folder_) std::filesystem::create_directories(setup.record);
+        if (folder_) {
+            std::error_code made;
+            std::filesystem::create_directories(setup.record, made);
+            if (made) {
+                std::fprintf(stderr, "arena-server: --record: cannot create the folder %s: %s\n", setup.record.c_str(),
+                             made.message().c_str());
+                return false;
+            }
+        }
         // Called for the matches there now (the default one) and for every match started later:
         // it must capture nothing of this call's. A match that cannot be recorded is said by
         // start(); the default match's file must open, or the server does not start.

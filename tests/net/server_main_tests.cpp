@@ -149,6 +149,20 @@ TEST_CASE("arena-server --preset asteroids plays the asteroids rules without --r
     CHECK(server.stop(SIGTERM) == 0);
 }
 
+TEST_CASE("a --record file or folder that cannot be made stops the server in one line", "[net][cli][replay]") {
+    // A file in a folder that does not exist: the recorder's own message.
+    const auto file = server_run("--record /nonexistent-arena-folder/x.arpl --duration 0.2");
+    CHECK(file.exit_code == 2);
+    CHECK(file.output ==
+          "arena-server: --record: /nonexistent-arena-folder/x.arpl: cannot create the replay file: No "
+          "such file or directory\n");
+    // A folder (a path ending in '/') under one that cannot hold folders.
+    const auto folder = server_run("--record /proc/arena-recordings/ --duration 0.2");
+    CHECK(folder.exit_code == 2);
+    CHECK(folder.output.rfind("arena-server: --record: cannot create the folder /proc/arena-recordings/: ", 0) == 0);
+    CHECK(std::count(folder.output.begin(), folder.output.end(), '\n') == 1);
+}
+
 TEST_CASE("SIGHUP ends the match like SIGTERM: Bye, stats and a finished recording", "[net][e2e][signal]") {
     const std::string stats = temp_path("hup-stats.json"), recording = temp_path("hup.arpl");
     server_process server({"--stats-json", stats, "--record", recording});
