@@ -12,18 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "common/run_command.hpp"
 #include "process.hpp"
 
-namespace {
-
 using arena::test::child_process;
+using arena::test::program;
 using arena::test::temp_dir;
 using namespace std::chrono_literals;
 using nlohmann::json;
-
-const std::string bin_dir = ARENA_BIN_DIR;
-
-}  // namespace
 
 TEST_CASE("each match's recording (--record FOLDER, 8 threads) replays on one thread, every hash matching",
           "[e2e][matches][replay]") {
@@ -31,14 +27,14 @@ TEST_CASE("each match's recording (--record FOLDER, 8 threads) replays on one th
     std::ofstream(dir.file("modes.json"))
         << R"({"modes": [{"name": "duel", "preset": "asteroids", "max_players": 2}]})";
     const std::string folder = dir.file("recordings/");  // a path ending in '/' is a folder, made if missing
-    child_process server(bin_dir + "/arena-server",
+    child_process server(program("arena-server"),
                          {"--bind", "127.0.0.1", "--port", "0", "--modes", dir.file("modes.json"), "--threads", "8",
                           "--record", folder, "--hash-interval", "10", "--stats-json", dir.file("stats.json")},
                          dir.file("server.log"));
     const auto port = arena::test::wait_for_listening(server, 5s);
     REQUIRE(port);
     // Six bots asking for a duel: three matches created on demand, beside the default one.
-    child_process bots(bin_dir + "/arena-bots",
+    child_process bots(program("arena-bots"),
                        {"--host", "127.0.0.1", "--port", std::to_string(*port), "--bots", "6", "--mode", "duel",
                         "--behavior", "mixed", "--duration", "4", "--seed", "5", "--quiet"},
                        dir.file("bots.log"));
@@ -60,7 +56,7 @@ TEST_CASE("each match's recording (--record FOLDER, 8 threads) replays on one th
 
     for (const std::string& name : recorded) {
         INFO(name);
-        child_process replay(bin_dir + "/arena-replay", {folder + name}, dir.file(name + ".replay.log"));
+        child_process replay(program("arena-replay"), {folder + name}, dir.file(name + ".replay.log"));
         REQUIRE(replay.wait_for(30s) == 0);
         const std::string out = replay.output();
         INFO(out);
