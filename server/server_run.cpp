@@ -37,11 +37,11 @@ public:
             }
         }
         // Called for the matches there now (the default one) and for every match started later:
-        // it must capture nothing of this call's. A match that cannot be recorded is said by
-        // start(); the default match's file must open, or the server does not start.
+        // it must capture nothing of this call's. The default match's file must open, or the
+        // server does not start.
         host.matches().observe(
             [this](host::hosted_match& m) {
-                if (m.key == 0 || folder_) (void)start(m);
+                if (m.key == 0 || folder_) start(m);
             },
             [this](host::hosted_match& m, const std::string&) { finish(m.key, *m.game); });
         if (!recordings_.contains(0)) return false;
@@ -58,7 +58,9 @@ private:
         bool failed = false;
     };
 
-    bool start(host::hosted_match& m) {
+    // Opens m's recording and records its ticks; one that cannot be opened is said (on stderr
+    // for the default match, in the log for another) and that match plays unrecorded.
+    void start(host::hosted_match& m) {
         const std::string path =
             folder_ ? (std::filesystem::path(setup_->record) / (m.id + ".arpl")).string() : setup_->record;
         match::match& game = *m.game;
@@ -71,7 +73,7 @@ private:
             } else {
                 host::log_line("match=%s is not recorded: %s", m.id.c_str(), opened.error.c_str());
             }
-            return false;
+            return;
         }
         one& r = recordings_[m.key];
         r.recorder.emplace(std::move(opened.value));
@@ -83,7 +85,6 @@ private:
                 r.failed = true;
             }
         };
-        return true;
     }
 
     void finish(uint64_t key, match::match& game) {
