@@ -30,15 +30,15 @@ pin_to_cpus
 # $work/LABEL.bots.json. The flag lists are single words split on spaces.
 run_arena() {
   local n=$1 label=$2
-  local -a server_flags=(${3:-}) bots_flags=(${4:-})
-  "${pin_server[@]}" "$bin/arena-server" --port 0 --max-players "$n" --max-connections $((2 * n + 16)) \
-    --max-pending-handshakes "$n" --tick-rate 60 --snapshot-rate 20 --rules sandbox "${server_flags[@]}" \
-    --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
+  local -a server_flags=(${3:-}) bots_flags=(${4:-}) server_load bots_load
+  load_flags "$n"
+  "${pin_server[@]}" "$bin/arena-server" --port 0 "${server_load[@]}" --tick-rate 60 --snapshot-rate 20 \
+    "${server_flags[@]}" --stats-json "$work/$label.server.json" > "$work/$label.out" 2> "$work/$label.log" &
   local server=$! port
   port=$(port_of "$work/$label.out" "listening on")
   [ -n "$port" ] || { echo "arena-server did not start" >&2; cat "$work/$label.log" >&2; return 1; }
-  "${pin_bots[@]}" "$bin/arena-bots" --port "$port" --bots "$n" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet "${bots_flags[@]}" --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 &
+  "${pin_bots[@]}" "$bin/arena-bots" --port "$port" "${bots_load[@]}" --duration "$seconds" "${bots_flags[@]}" \
+    --json "$work/$label.bots.json" > "$work/$label.bots.out" 2>&1 &
   local bots=$!
   # The steady state, measured as Colyseus' run.sh and the floor measure theirs: the server's
   # CPU from SETTLE s after the bots start (every join done) to 1 s before they stop.
@@ -105,12 +105,11 @@ rooms_runs=${E2E_ROOMS_RUNS:-1}
 part rooms || exit 0
 echo
 echo "## Many matches in one process: $rooms_bots clients in matches of 8, 60 inputs/s each, every body of a match in view, server on CPU 1"
-write_room_mode "$work/modes.json" 8
+room_load "$work/modes.json" 8
 for run in $(seq "$rooms_runs"); do
   echo >&2
   echo "running Arena with $rooms_bots bots in matches of 8 (run $run of $rooms_runs)..." >&2
-  run_arena "$rooms_bots" arena-rooms "--modes $work/modes.json --view-radius 0 --threads 1 --max-matches 1000" \
-    "--mode room8"
+  run_arena "$rooms_bots" arena-rooms "${room_server[*]}" "${room_bots[*]}"
   echo
   if [ -x "$colyseus/run.sh" ] && command -v npm >/dev/null; then
     echo "running Colyseus with $rooms_bots clients in rooms of 8..." >&2

@@ -27,12 +27,12 @@ rounds=${FLOOR_ROUNDS:-1}
 work=$(mktemp -d /tmp/arena-floor.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 . "$(dirname "$0")/server_load.sh"
-server_mode=(); bots_mode=()
+server_mode=(--view-radius 0); bots_mode=()  # one match of every client, every body in view
 if [ "$room_size" -gt 0 ]; then
-  write_room_mode "$work/modes.json" "$room_size"
-  server_mode=(--modes "$work/modes.json" --threads 1 --max-matches 1000)
-  bots_mode=(--mode "room$room_size")
+  room_load "$work/modes.json" "$room_size"
+  server_mode=("${room_server[@]}"); bots_mode=("${room_bots[@]}")
 fi
+load_flags "$clients"
 pin_to_cpus
 ticks_per_s=$(getconf CLK_TCK)
 
@@ -49,14 +49,13 @@ PY
 # ticks' seconds per s within it, the whole run's CPU s per s, and the mean snapshot's bytes.
 measure_server() {
   local bin=$1 n=$2 server port http bots cpu0 cpu1 step0 step1 t0 t1
-  "${pin_server[@]}" "$bin/arena-server" --port 0 --http-port 0 --max-players "$clients" \
-    --max-connections $((2 * clients + 16)) --max-pending-handshakes "$clients" --view-radius 0 --rules sandbox \
-    "${server_mode[@]}" --stats-json "$work/s$n.json" > "$work/s$n.out" 2> "$work/s$n.log" &
+  "${pin_server[@]}" "$bin/arena-server" --port 0 --http-port 0 "${server_load[@]}" "${server_mode[@]}" \
+    --stats-json "$work/s$n.json" > "$work/s$n.out" 2> "$work/s$n.log" &
   server=$!
   port=$(port_of "$work/s$n.out" "listening on")
   http=$(port_of "$work/s$n.out" "http listening on")
-  "${pin_bots[@]}" "$tools/arena-bots" --port "$port" --bots "$clients" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet "${bots_mode[@]}" --json "$work/b$n.json" > /dev/null 2>&1 &
+  "${pin_bots[@]}" "$tools/arena-bots" --port "$port" "${bots_load[@]}" --duration "$seconds" "${bots_mode[@]}" \
+    --json "$work/b$n.json" > /dev/null 2>&1 &
   bots=$!
   sleep "$settle"
   cpu0=$(cpu_ticks "$server"); step0=$(tick_seconds "$http"); t0=$(date +%s.%N)

@@ -24,15 +24,15 @@ settle=${PAIR_SETTLE:-4}
 work=$(mktemp -d /tmp/arena-pair.XXXXXX)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 . "$(dirname "$0")/server_load.sh"
-write_room_mode "$work/modes.json" "$room_size"
+room_load "$work/modes.json" "$room_size"
+load_flags "$clients"
 pin_to_cpus
 
 started=""  # the pid of what start_server or start_bots started last (a child of this shell)
 
 start_server() {  # start_server BIN TAG
-  "${pin_server[@]}" "$1/arena-server" --port 0 --max-players "$clients" --max-connections $((2 * clients + 16)) \
-    --max-pending-handshakes "$clients" --view-radius 0 --rules sandbox --modes "$work/modes.json" --threads 1 \
-    --max-matches 1000 > "$work/$2.out" 2> "$work/$2.log" &
+  "${pin_server[@]}" "$1/arena-server" --port 0 "${server_load[@]}" "${room_server[@]}" > "$work/$2.out" \
+    2> "$work/$2.log" &
   started=$!
 }
 
@@ -40,8 +40,8 @@ start_bots() {  # start_bots TAG: the clients of the server TAG
   local port
   port=$(port_of "$work/$1.out" "listening on")
   [ -n "$port" ] || { echo "pair_compare.sh: server $1 printed no port: $(tail -1 "$work/$1.log")" >&2; exit 1; }
-  "${pin_bots[@]}" "$tools/arena-bots" --port "$port" --bots "$clients" --duration "$seconds" --connect-rate 500 \
-    --behavior mixed --seed 1 --quiet --mode "room$room_size" > "$work/$1.bots" 2>&1 &
+  "${pin_bots[@]}" "$tools/arena-bots" --port "$port" "${bots_load[@]}" --duration "$seconds" "${room_bots[@]}" \
+    > "$work/$1.bots" 2>&1 &
   started=$!
 }
 

@@ -19,11 +19,24 @@ pin_to_cpus() {
   if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin_server=(taskset -c 1); pin_bots=(taskset -c 0); fi
 }
 
-# write_room_mode FILE N: a --modes file with one mode, "roomN": the asteroids preset without
-# rocks, sandbox rules, N seats (the many-matches load).
-write_room_mode() {
+# load_flags N: sets server_load and bots_load, the flags that make arena-server and arena-bots
+# the CPU comparisons' load for N clients, the same in every script: seats, connections and
+# pending handshakes for N and the sandbox rules; N mixed bots joining 500 a second, seed 1.
+# Callers add ports, duration, output and what their run differs in.
+load_flags() {
+  server_load=(--max-players "$1" --max-connections $((2 * $1 + 16)) --max-pending-handshakes "$1" --rules sandbox)
+  bots_load=(--bots "$1" --connect-rate 500 --behavior mixed --seed 1 --quiet)
+}
+
+# room_load FILE N: the many-matches load in matches of N. Writes FILE, a --modes file with one
+# mode, "roomN": the asteroids preset without rocks, sandbox rules, N seats. Sets room_server
+# (that mode, every body of a match in view, one tick thread, room for 1000 matches) and
+# room_bots (join-or-create "roomN").
+room_load() {
   echo "{\"modes\": [{\"name\": \"room$2\", \"preset\": \"asteroids\", \"rules\": \"sandbox\", \"max_players\": $2,
   \"world\": {\"rocks\": {\"count\": 0}}}]}" > "$1"
+  room_server=(--modes "$1" --view-radius 0 --threads 1 --max-matches 1000)
+  room_bots=(--mode "room$2")
 }
 
 # port_of FILE PREFIX: the port of the line "PREFIX HOST:PORT" a server prints to FILE (its
